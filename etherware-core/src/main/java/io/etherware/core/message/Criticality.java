@@ -1,0 +1,16 @@
+package io.etherware.core.message;
+
+/**
+ * How much a message matters for timeliness (paper Fig. 3).
+ *
+ * <p>{@link #NONE} marks a message without real-time requirements: the original Etherware's
+ * best-effort delivery. The others are ordered from least to most critical, so
+ * {@code HIGH.compareTo(LOW) > 0}.
+ */
+public enum Criticality {
+    /** No real-time requirement; delivered by the non-real-time dispatcher. */
+    NONE,
+    LOW,
+    MIDDLE,
+    HIGH
+}

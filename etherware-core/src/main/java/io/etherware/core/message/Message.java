@@ -1,0 +1,60 @@
+package io.etherware.core.message;
+
+import java.util.Objects;
+
+/**
+ * An Etherware message (paper Fig. 1 and Fig. 3): whom it is for, when it was made, how it must
+ * be delivered and what it says.
+ *
+ * <p>Immutable. In process it is passed by reference and never serialized; it becomes XML only
+ * where it leaves the JVM (the network, state snapshots, logs on request).
+ *
+ * @param profile       the receiver's profile (exact or a query the registry resolves)
+ * @param sender        the sender's profile, to which replies go; null when the sender is not a
+ *                      component (a test, a main method)
+ * @param timeStamp     creation time, epoch nanoseconds of the sender node's clock; translated
+ *                      by NetworkTime when the message crosses nodes
+ * @param qos           delivery requirements; {@link QoS#NONE} for best effort
+ * @param contents      the payload, a registered record; {@link Empty#INSTANCE} for none
+ * @param messageId     unique within the creating node
+ * @param correlationId for a reply, the id of the request it answers; otherwise null
+ */
+public record Message(Profile profile, Profile sender, long timeStamp, QoS qos, Contents contents,
+                      MessageId messageId, MessageId correlationId) {
+
+    public Message {
+        Objects.requireNonNull(profile, "profile");
+        Objects.requireNonNull(qos, "qos");
+        Objects.requireNonNull(contents, "contents");
+        Objects.requireNonNull(messageId, "messageId");
+    }
+
+    /** Whether this message answers a request. */
+    public boolean isReply() {
+        return correlationId != null;
+    }
+
+    /** Whether a reply can be sent to this message's sender. */
+    public boolean hasSender() {
+        return sender != null;
+    }
+
+    /** This message with another receiver, e.g. after a query was resolved. */
+    public Message withProfile(Profile newProfile) {
+        return new Message(newProfile, sender, timeStamp, qos, contents, messageId, correlationId);
+    }
+
+    /** This message with its time stamp translated into another clock (NetworkTime). */
+    public Message withTimeStamp(long newTimeStamp) {
+        return new Message(profile, sender, newTimeStamp, qos, contents, messageId, correlationId);
+    }
+
+    /** The contents cast to the expected type, or an exception naming both types. */
+    public <T extends Contents> T contentsAs(Class<T> type) {
+        if (!type.isInstance(contents)) {
+            throw new ClassCastException("message " + messageId + " carries " + contents.getClass().getSimpleName()
+                    + ", not " + type.getSimpleName());
+        }
+        return type.cast(contents);
+    }
+}

@@ -1,0 +1,16 @@
+package io.etherware.core.message;
+
+/**
+ * A message could not be encoded or decoded: malformed or hostile XML, an unregistered contents
+ * type, a field that does not fit its record. The text says what was wrong and where, so the
+ * log line alone is enough to find the sender's bug.
+ */
+public class MessageFormatException extends RuntimeException {
+    public MessageFormatException(String message) {
+        super(message);
+    }
+
+    public MessageFormatException(String message, Throwable cause) {
+        super(message, cause);
+    }
+}

@@ -1,0 +1,5 @@
+/** Etherware services: Notifier, NetworkMessenger, NetworkTime, runtime upgrade and migration. */
+module io.etherware.services {
+    requires transitive io.etherware.core;
+    requires transitive io.etherware.rt;
+}

@@ -1,0 +1,2 @@
+/** The rotary inverted pendulum of the paper's Section VI-A, integrated with RK4. */
+package io.etherware.pendulum.plant;
