@@ -102,7 +102,7 @@ public final class MessageCodec {
                 .build();
         var module = new SimpleModule("etherware-message");
         module.addSerializer(Message.class, new EnvelopeSerializer(contentsTypes, maxNestingDepth, maxTextLength));
-        module.addDeserializer(Message.class, new EnvelopeDeserializer(contentsTypes));
+        module.addDeserializer(Message.class, new EnvelopeDeserializer(contentsTypes, maxTextLength));
         XmlMapper mapper = XmlMapper.builder(xmlFactory).addModule(module).build();
         writer = mapper.writerFor(Message.class).withRootName("message");
         reader = mapper.readerFor(Message.class);

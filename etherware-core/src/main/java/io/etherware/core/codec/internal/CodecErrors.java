@@ -45,7 +45,7 @@ public final class CodecErrors {
                 return new MessageFormatException("text or attribute longer than maxTextLength=" + maxTextLength + " ("
                         + text + ")", failure);
             }
-            if (text.contains("Unexpected EOF")) {
+            if (text.contains("Unexpected EOF") || text.contains("Unexpected end of input")) {
                 return new MessageFormatException("truncated or empty document: " + text, failure);
             }
             return new MessageFormatException("malformed XML: " + text, failure);
@@ -69,7 +69,7 @@ public final class CodecErrors {
         if (failure instanceof XMLStreamException xml && xml.getLocation() != null) {
             Location location = xml.getLocation();
             if (location.getLineNumber() > 0) {
-                text += " at line " + location.getLineNumber() + ", column " + location.getColumnNumber();
+                text = (text.endsWith(".") ? text.substring(0, text.length() - 1) : text) + " at line " + location.getLineNumber() + ", column " + location.getColumnNumber();
             }
         }
         return text;

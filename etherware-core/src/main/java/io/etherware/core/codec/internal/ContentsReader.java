@@ -29,9 +29,11 @@ import java.util.List;
 final class ContentsReader {
 
     private final ContentsTypes types;
+    private final int maxTextLength;
 
-    ContentsReader(ContentsTypes types) {
+    ContentsReader(ContentsTypes types, int maxTextLength) {
         this.types = types;
+        this.maxTextLength = maxTextLength;
     }
 
     /**
@@ -222,7 +224,7 @@ final class ContentsReader {
         }
     }
 
-    private static String text(JsonParser parser, ValueType type) throws IOException {
+    private String text(JsonParser parser, ValueType type) throws IOException {
         JsonToken token = parser.currentToken();
         if (token == JsonToken.START_OBJECT) {
             throw new FieldError("expected text for a " + type.describe() + ", found child elements or attributes");
@@ -230,6 +232,15 @@ final class ContentsReader {
         if (token == null || !token.isScalarValue()) {
             throw new FieldError("expected text for a " + type.describe() + ", found " + token);
         }
-        return parser.getText();
+        String text = parser.getText();
+        // Woodstox bounds each text segment; text split by CDATA sections is joined again here.
+        if (text.length() > maxTextLength) {
+            throw new FieldError(tooLong(text.length(), maxTextLength));
+        }
+        return text;
+    }
+
+    static String tooLong(int length, int maxTextLength) {
+        return "text longer than maxTextLength=" + maxTextLength + " (" + length + " chars)";
     }
 }

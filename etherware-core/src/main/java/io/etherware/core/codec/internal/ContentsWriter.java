@@ -127,7 +127,7 @@ final class ContentsWriter {
     /** Refuses text the decoder would reject or that XML 1.0 cannot carry. */
     static void checkText(String text, int maxTextLength) {
         if (text.length() > maxTextLength) {
-            throw new FieldError("text of " + text.length() + " chars is over maxTextLength=" + maxTextLength);
+            throw new FieldError(ContentsReader.tooLong(text.length(), maxTextLength));
         }
         int invalid = Scalars.firstInvalidXmlChar(text);
         if (invalid >= 0) {

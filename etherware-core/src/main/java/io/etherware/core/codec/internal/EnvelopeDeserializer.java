@@ -25,10 +25,12 @@ import java.io.IOException;
 public final class EnvelopeDeserializer extends StdDeserializer<Message> {
 
     private final ContentsReader contentsReader;
+    private final int maxTextLength;
 
-    public EnvelopeDeserializer(ContentsTypes types) {
+    public EnvelopeDeserializer(ContentsTypes types, int maxTextLength) {
         super(Message.class);
-        this.contentsReader = new ContentsReader(types);
+        this.contentsReader = new ContentsReader(types, maxTextLength);
+        this.maxTextLength = maxTextLength;
     }
 
     @Override
@@ -90,7 +92,7 @@ public final class EnvelopeDeserializer extends StdDeserializer<Message> {
         return new Message(profile, sender, timeStamp, qos, contents, messageId, correlationId);
     }
 
-    private static QoS readQos(JsonParser parser) throws IOException {
+    private QoS readQos(JsonParser parser) throws IOException {
         Criticality criticality = null;
         long periodNs = 0;
         long deadlineNs = 0;
@@ -151,7 +153,7 @@ public final class EnvelopeDeserializer extends StdDeserializer<Message> {
         };
     }
 
-    private static Profile profile(JsonParser parser, String name, Profile previous) throws IOException {
+    private Profile profile(JsonParser parser, String name, Profile previous) throws IOException {
         once(name, previous != null);
         String text = text(parser, name);
         try {
@@ -161,7 +163,7 @@ public final class EnvelopeDeserializer extends StdDeserializer<Message> {
         }
     }
 
-    private static MessageId messageId(JsonParser parser, String name, MessageId previous) throws IOException {
+    private MessageId messageId(JsonParser parser, String name, MessageId previous) throws IOException {
         once(name, previous != null);
         String text = text(parser, name);
         try {
@@ -180,7 +182,7 @@ public final class EnvelopeDeserializer extends StdDeserializer<Message> {
     }
 
     /** Moves to the value of element {@code name} and returns its text. */
-    private static String text(JsonParser parser, String name) throws IOException {
+    private String text(JsonParser parser, String name) throws IOException {
         JsonToken token = parser.nextToken();
         if (token == JsonToken.VALUE_NULL) {
             throw new MessageFormatException("<" + name + "> must not be nil");
@@ -188,7 +190,11 @@ public final class EnvelopeDeserializer extends StdDeserializer<Message> {
         if (token == null || !token.isScalarValue()) {
             throw new MessageFormatException("<" + name + "> must be text, found child elements or attributes");
         }
-        return parser.getText();
+        String text = parser.getText();
+        if (text.length() > maxTextLength) {
+            throw new MessageFormatException("<" + name + ">: " + ContentsReader.tooLong(text.length(), maxTextLength));
+        }
+        return text;
     }
 
     private static void requireBlank(JsonParser parser, String where) throws IOException {

@@ -83,8 +83,7 @@ public final class EnvelopeSerializer extends StdSerializer<Message> {
     private void writeText(ToXmlGenerator xml, String name, String text) throws IOException {
         // Profiles and ids are restricted to safe characters by their records; only the length can be wrong.
         if (text.length() > maxTextLength) {
-            throw new MessageFormatException("<" + name + "> of " + text.length() + " chars is over maxTextLength="
-                    + maxTextLength);
+            throw new MessageFormatException("<" + name + ">: " + ContentsReader.tooLong(text.length(), maxTextLength));
         }
         xml.writeFieldName(name);
         xml.writeString(text);

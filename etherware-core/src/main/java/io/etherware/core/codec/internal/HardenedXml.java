@@ -74,10 +74,11 @@ public final class HardenedXml {
     /**
      * Opens a UTF-8 document and reads its prolog; the reader is left on the root element.
      *
-     * @throws MessageFormatException for a DOCTYPE, a non-UTF-8 encoding or a wrong root
+     * @throws MessageFormatException for invalid UTF-8, a DOCTYPE, another encoding or a wrong root
      * @throws XMLStreamException     for malformed XML, translated by {@link CodecErrors}
      */
     public XMLStreamReader2 open(byte[] document) throws XMLStreamException {
+        Utf8.requireValid(document);
         var reader = (XMLStreamReader2) inputFactory.createXMLStreamReader(
                 new Stax2ByteArraySource(document, 0, document.length));
         try {
@@ -108,8 +109,9 @@ public final class HardenedXml {
                 case XMLStreamConstants.START_ELEMENT -> {
                     String namespace = reader.getNamespaceURI();
                     if (!Wire.MESSAGE.equals(reader.getLocalName()) || namespace != null && !namespace.isEmpty()) {
-                        throw new MessageFormatException("root element is <" + reader.getPrefixedName()
-                                + ">; a message is a <" + Wire.MESSAGE + "> element in no namespace");
+                        throw new MessageFormatException("root element is <" + reader.getPrefixedName() + ">"
+                                + (namespace == null || namespace.isEmpty() ? "" : " in namespace '" + namespace + "'")
+                                + "; a message is a <" + Wire.MESSAGE + "> element in no namespace");
                     }
                     return reader;
                 }
