@@ -25,6 +25,7 @@ import java.io.IOException;
 public final class EnvelopeDeserializer extends StdDeserializer<Message> {
 
     private final ContentsReader contentsReader;
+    private final ProfileCache profiles = new ProfileCache();
     private final int maxTextLength;
 
     public EnvelopeDeserializer(ContentsTypes types, int maxTextLength) {
@@ -157,7 +158,7 @@ public final class EnvelopeDeserializer extends StdDeserializer<Message> {
         once(name, previous != null);
         String text = text(parser, name);
         try {
-            return Profile.parse(text);
+            return profiles.parse(text);
         } catch (IllegalArgumentException e) {
             throw new MessageFormatException("malformed <" + name + ">: " + e.getMessage(), e);
         }
