@@ -115,6 +115,10 @@ class MessageCodecHostileInputTest {
                 bad("list with a foreign element", contents("<contents type=\"holder\"><any type=\"empty\"/>"
                         + "<state type=\"counter-state\"><count>1</count><label>x</label></state>"
                         + "<many><entry type=\"empty\"/></many></contents>"), "expected <item> elements"),
+                bad("base64 with a foreign character", contents("<contents type=\"samples\"><values/><stampsNs/>"
+                        + "<counts/><raw>AQ!D</raw></contents>"), "field 'raw': is not base64"),
+                bad("array entry of the wrong type", contents("<contents type=\"samples\"><values>1.5 2,5</values>"
+                        + "<stampsNs/><counts/><raw/></contents>"), "field 'values': entry 1 '2,5' is not a double"),
                 bad("second root", utf8(ENVELOPE + TICK + "</message><message/>"), "multiple roots"),
                 bad("undeclared entity", contents(TICK.replace("<sequence>2<", "<sequence>&two;<")),
                         "Undeclared general entity"),

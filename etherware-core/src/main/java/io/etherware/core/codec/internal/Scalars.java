@@ -161,7 +161,7 @@ final class Scalars {
     static Object parseArray(ArrayKind kind, String text) {
         if (kind == ArrayKind.BYTE) {
             try {
-                return Base64.getMimeDecoder().decode(strip(text));
+                return Base64.getDecoder().decode(XML_SPACES.matcher(text).replaceAll(""));
             } catch (IllegalArgumentException e) {
                 throw new FieldError("is not base64: " + e.getMessage());
             }
