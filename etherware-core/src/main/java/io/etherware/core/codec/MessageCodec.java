@@ -46,9 +46,10 @@ import java.util.Objects;
  *
  * <p><b>Threading.</b> Immutable and thread-safe: one instance per node serves every thread.
  * It holds one configured {@link XmlMapper} and reuses its immutable {@link ObjectReader} and
- * {@link ObjectWriter}; each call streams through the document without building a tree. Calls
- * allocate (the output, strings of the input) and take microseconds, so a dispatcher should not
- * encode on a tight real-time path it cannot afford that on.
+ * {@link ObjectWriter}; each call streams through the document without building a tree. A call
+ * takes a few microseconds and allocates a few kilobytes (parser state, the output, the decoded
+ * strings), and it does not block: fine at the edge of a node (network, snapshots), but not
+ * something to put in a control loop's hot path. In-process delivery never encodes.
  */
 public final class MessageCodec {
 

@@ -126,8 +126,8 @@ final class RecordShape {
 
     private static MessageFormatException inaccessible(Class<?> type, ReflectiveOperationException e) {
         String pkg = type.getPackageName();
-        return new MessageFormatException("record " + type.getName() + " is not accessible to the codec (" + e.getMessage()
-                + "); make it a public record in an exported package, or add 'opens " + pkg
+        return new MessageFormatException("record " + type.getName() + " is not accessible to the codec; make it a "
+                + "public record in an exported package, or add 'opens " + pkg
                 + " to io.etherware.core;' to the module-info of " + type.getModule().getName(), e);
     }
 }
