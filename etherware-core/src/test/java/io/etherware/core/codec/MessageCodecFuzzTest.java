@@ -19,7 +19,7 @@ import static org.junit.jupiter.api.Assertions.fail;
 class MessageCodecFuzzTest {
 
     private static final long SEED = 0xF022L;
-    private static final int MUTATIONS = 8_000;
+    private static final int MUTATIONS = 5_000;
     private static final byte[] INTERESTING = "<>&;/\"'=#[]! \r\n\t0-9aZ\u00e9".getBytes(StandardCharsets.UTF_8);
 
     private final MessageCodec codec = MessageCodec.builder().contentsTypes(TestContents.registry()).build();

@@ -119,6 +119,10 @@ class MessageCodecHostileInputTest {
                         + "<counts/><raw>AQ!D</raw></contents>"), "field 'raw': is not base64"),
                 bad("array entry of the wrong type", contents("<contents type=\"samples\"><values>1.5 2,5</values>"
                         + "<stampsNs/><counts/><raw/></contents>"), "field 'values': entry 1 '2,5' is not a double"),
+                bad("U+FFFE in text", contents("<contents type=\"text\"><text>a\uFFFE</text></contents>"),
+                        "not allowed in XML 1.0"),
+                bad("U+FFFF as a char", contents("<contents type=\"everything\"><c>\uFFFF</c></contents>"),
+                        "not allowed in XML 1.0"),
                 bad("second root", utf8(ENVELOPE + TICK + "</message><message/>"), "multiple roots"),
                 bad("undeclared entity", contents(TICK.replace("<sequence>2<", "<sequence>&two;<")),
                         "Undeclared general entity"),
@@ -170,6 +174,16 @@ class MessageCodecHostileInputTest {
         var error = assertThrows(MessageFormatException.class, () -> codec.decode(text));
         assertTrue(error.getMessage().contains(expected),
                 () -> name + ": expected '" + expected + "' in: " + error.getMessage());
+    }
+
+    @Test
+    void shouldRejectUnpairedSurrogatesWhenTheDocumentIsAString() {
+        for (String text : new String[]{"\uD800", "x\uDC00", "\uDBFFx"}) {
+            String document = new String(contents("<contents type=\"text\"><text>" + "</text></contents>"),
+                    StandardCharsets.UTF_8).replace("<text></text>", "<text>" + text + "</text>");
+            var error = assertThrows(MessageFormatException.class, () -> codec.decode(document));
+            assertTrue(error.getMessage().contains("is not allowed in XML 1.0"), error.getMessage());
+        }
     }
 
     @Test

@@ -31,6 +31,10 @@ public final class CodecErrors {
         if (ours != null) {
             return ours;
         }
+        if (messageContains(failure, "Invalid UTF-8 character")) {
+            // The bytes passed our strict UTF-8 check, so this is U+FFFE or U+FFFF, which XML forbids.
+            return new MessageFormatException("character not allowed in XML 1.0: " + describe(deepest(failure)), failure);
+        }
         if (find(failure, CharConversionException.class) != null || messageContains(failure, "Invalid UTF-8")) {
             return new MessageFormatException("not valid UTF-8: " + describe(deepest(failure)), failure);
         }

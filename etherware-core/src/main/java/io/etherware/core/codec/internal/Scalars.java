@@ -54,6 +54,14 @@ final class Scalars {
      * @throws FieldError naming the text and the expected type
      */
     static Object parse(ScalarKind kind, String text) {
+        if (kind == ScalarKind.STRING || kind == ScalarKind.CHAR) {
+            // Woodstox lets U+FFFE, U+FFFF and unpaired surrogates through; the encoder could not write them back.
+            int invalid = firstInvalidXmlChar(text);
+            if (invalid >= 0) {
+                throw new FieldError(String.format("character U+%04X at index %d is not allowed in XML 1.0",
+                        (int) text.charAt(invalid), invalid));
+            }
+        }
         try {
             return switch (kind) {
                 case STRING -> text;
