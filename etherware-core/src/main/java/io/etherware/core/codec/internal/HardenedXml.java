@@ -2,8 +2,6 @@ package io.etherware.core.codec.internal;
 
 import com.ctc.wstx.api.WstxInputProperties;
 import com.ctc.wstx.api.WstxOutputProperties;
-import com.ctc.wstx.stax.WstxInputFactory;
-import com.ctc.wstx.stax.WstxOutputFactory;
 import io.etherware.core.message.MessageFormatException;
 import org.codehaus.stax2.XMLInputFactory2;
 import org.codehaus.stax2.XMLStreamReader2;
@@ -39,7 +37,7 @@ public final class HardenedXml {
     private final XMLOutputFactory outputFactory;
 
     public HardenedXml(int maxNestingDepth, int maxTextLength) {
-        inputFactory = new WstxInputFactory();
+        inputFactory = woodstox("com.ctc.wstx.stax.WstxInputFactory", XMLInputFactory2.class);
         inputFactory.setProperty(XMLInputFactory.SUPPORT_DTD, false);
         inputFactory.setProperty(XMLInputFactory.IS_SUPPORTING_EXTERNAL_ENTITIES, false);
         inputFactory.setProperty(XMLInputFactory.IS_NAMESPACE_AWARE, true);
@@ -57,10 +55,24 @@ public final class HardenedXml {
         inputFactory.setProperty(WstxInputProperties.P_MAX_ATTRIBUTE_SIZE, maxTextLength);
         inputFactory.setProperty(WstxInputProperties.P_MAX_ATTRIBUTES_PER_ELEMENT, MAX_ATTRIBUTES_PER_ELEMENT);
 
-        outputFactory = new WstxOutputFactory();
+        outputFactory = woodstox("com.ctc.wstx.stax.WstxOutputFactory", XMLOutputFactory.class);
         outputFactory.setProperty(XMLOutputFactory.IS_REPAIRING_NAMESPACES, true);
         // A CR in text must survive the reader's line-end normalization, so it goes out as &#xd;.
         outputFactory.setProperty(WstxOutputProperties.P_OUTPUT_ESCAPE_CR, true);
+    }
+
+    /**
+     * Woodstox by name, never whichever StAX implementation a service lookup finds: the limits
+     * set here are Woodstox properties. Not imported because its factory classes carry a bnd
+     * annotation whose class is not on our compile path, and javac would warn on every build.
+     */
+    private static <T> T woodstox(String className, Class<T> type) {
+        try {
+            return type.cast(Class.forName(className).getConstructor().newInstance());
+        } catch (ReflectiveOperationException | ClassCastException e) {
+            throw new IllegalStateException("the message codec needs Woodstox (com.fasterxml.woodstox:woodstox-core, "
+                    + "a dependency of jackson-dataformat-xml): cannot create " + className, e);
+        }
     }
 
     public XMLInputFactory inputFactory() {
