@@ -5,14 +5,16 @@ import java.io.IOException;
 import java.util.Objects;
 
 /**
- * A synchronous client of the DSP board over a {@link SerialLink}: each call sends one request
- * and waits for its reply (matched by sequence number) up to the response timeout. This is what
- * the DSPProxy component uses, and what a plain control loop can use directly.
+ * A synchronous client of the DSP board over a {@link SerialLink}: each call sends a request
+ * and waits for its reply (matched by sequence number) up to the response timeout, resending it
+ * up to {@link Config#attempts()} times in all. Every request is idempotent — a torque command
+ * sets an absolute value — so a resend after a lost reply is harmless. This is what the DSPProxy
+ * component uses, and what a plain control loop can use directly.
  *
- * <p>Replies to earlier, timed-out requests are recognized by their sequence number and dropped
- * (counted as stale); corrupt bytes are rejected by the {@link FrameDecoder} and counted. A
- * timeout throws {@link DspTimeoutException} naming the request, the wait and the link's error
- * counts; the client stays usable.
+ * <p>Replies to earlier, timed-out attempts are recognized by their sequence number and dropped
+ * (counted as stale); corrupt bytes are rejected by the {@link FrameDecoder} and counted. When
+ * every attempt times out the call throws {@link DspTimeoutException} naming the request, the
+ * wait and the link's error counts; the client stays usable.
  *
  * <p>Not thread-safe: one caller at a time (the proxy's dispatcher thread). The clock must be the
  * link's time base: the system clock for real links, the {@code LockStepClock} in lock step.
@@ -24,13 +26,20 @@ public final class DspClient {
      *
      * @param countsPerRevolution the encoders' resolution, to turn counts into radians
      * @param responseTimeoutNs how long to wait for each reply
+     * @param attempts how many times a request is sent before the call fails, at least 1
      */
-    public record Config(int countsPerRevolution, long responseTimeoutNs) {
+    public record Config(int countsPerRevolution, long responseTimeoutNs, int attempts) {
 
         /** 4096 counts per revolution. */
         public static final int DEFAULT_COUNTS_PER_REVOLUTION = 4096;
-        /** 10 ms: a 19-byte reply at 115200 baud takes 1.6 ms, the board answers within 0.5 ms. */
-        public static final long DEFAULT_RESPONSE_TIMEOUT_NS = 10_000_000L;
+        /**
+         * 4 ms: at 115200 baud a READ_ANGLES (5 bytes) and its reply (19 bytes) take 2.1 ms on the
+         * wire and the board answers within its 0.5 ms cycle. Two attempts of a read and of a
+         * command then fit in the paper's 15 ms period.
+         */
+        public static final long DEFAULT_RESPONSE_TIMEOUT_NS = 4_000_000L;
+        /** One resend after a lost frame. */
+        public static final int DEFAULT_ATTEMPTS = 2;
 
         /** Validates the fields. */
         public Config {
@@ -42,30 +51,40 @@ public final class DspClient {
                 throw new IllegalArgumentException("responseTimeoutNs=" + responseTimeoutNs
                         + ": must be > 0");
             }
+            if (attempts < 1 || attempts > 10) {
+                throw new IllegalArgumentException("attempts=" + attempts + ": must be within [1, 10]");
+            }
         }
 
-        /** 4096 counts per revolution, 10 ms timeout. */
+        /** 4096 counts per revolution, 4 ms timeout, 2 attempts. */
         public static Config defaults() {
-            return new Config(DEFAULT_COUNTS_PER_REVOLUTION, DEFAULT_RESPONSE_TIMEOUT_NS);
+            return new Config(DEFAULT_COUNTS_PER_REVOLUTION, DEFAULT_RESPONSE_TIMEOUT_NS,
+                    DEFAULT_ATTEMPTS);
         }
 
-        /** A copy with another response timeout. */
-        public Config withResponseTimeoutNs(long timeoutNs) {
-            return new Config(countsPerRevolution, timeoutNs);
+        /** A copy with another encoder resolution. */
+        public Config withCountsPerRevolution(int counts) {
+            return new Config(counts, responseTimeoutNs, attempts);
+        }
+
+        /** A copy with another response timeout and number of attempts. */
+        public Config withTimeout(long timeoutNs, int attemptCount) {
+            return new Config(countsPerRevolution, timeoutNs, attemptCount);
         }
     }
 
     /**
      * The client's counters. Immutable snapshot.
      *
-     * @param requests requests sent
-     * @param timeouts requests that got no reply in time
+     * @param requests request frames sent, resends included
+     * @param timeouts attempts that got no reply in time (resent or failed)
+     * @param failures calls that failed after all their attempts
      * @param staleReplies valid replies that answered no pending request (late or unexpected)
      * @param framesRejected corrupt candidate frames received
      * @param bytesDiscarded received bytes skipped while resynchronizing
      */
-    public record Counters(long requests, long timeouts, long staleReplies, long framesRejected,
-            long bytesDiscarded) {}
+    public record Counters(long requests, long timeouts, long failures, long staleReplies,
+            long framesRejected, long bytesDiscarded) {}
 
     private final SerialLink link;
     private final NodeClock clock;
@@ -84,6 +103,7 @@ public final class DspClient {
     private long unwrappedTimeUs;
     private long requests;
     private long timeouts;
+    private long failures;
     private long staleReplies;
 
     /** A client on {@code link}, timing its waits with {@code clock}. */
@@ -96,35 +116,29 @@ public final class DspClient {
 
     /** Samples both encoders. */
     public Angles readAngles() throws DspException {
-        int sequence = send(DspProtocol.encodeRequest(txFrame, DspProtocol.READ_ANGLES, allocateSequence()),
-                DspProtocol.READ_ANGLES);
-        await(DspProtocol.ANGLES, sequence, "READ_ANGLES");
+        exchange(DspProtocol.READ_ANGLES, DspProtocol.ANGLES, 0.0);
         int counts1 = DspProtocol.getI32(replyPayload, 2);
         int counts2 = DspProtocol.getI32(replyPayload, 6);
         long timeUs = unwrap(DspProtocol.getU32(replyPayload, 10));
-        return new Angles(sequence, counts1, counts2, timeUs, counts1 * radiansPerCount,
-                counts2 * radiansPerCount);
+        return new Angles(DspProtocol.getU16(replyPayload, 0), counts1, counts2, timeUs,
+                counts1 * radiansPerCount, counts2 * radiansPerCount);
     }
 
     /** Commands the motor torque; the board clamps it to its range and says so in the ACK. */
     public TorqueAck setTorque(double torqueNm) throws DspException {
-        int sequence = allocateSequence();
-        send(DspProtocol.encodeSetTorque(txFrame, sequence, torqueNm), DspProtocol.SET_TORQUE);
-        await(DspProtocol.ACK, sequence, "SET_TORQUE");
-        return new TorqueAck(sequence, replyPayload[2] & 0xFF);
+        exchange(DspProtocol.SET_TORQUE, DspProtocol.ACK, torqueNm);
+        return new TorqueAck(DspProtocol.getU16(replyPayload, 0), replyPayload[2] & 0xFF);
     }
 
     /** Reads the board's fault flags and counters. */
     public BoardStatus readStatus() throws DspException {
-        int sequence = send(DspProtocol.encodeRequest(txFrame, DspProtocol.READ_STATUS, allocateSequence()),
-                DspProtocol.READ_STATUS);
-        await(DspProtocol.STATUS, sequence, "READ_STATUS");
+        exchange(DspProtocol.READ_STATUS, DspProtocol.STATUS, 0.0);
         return BoardStatus.decode(replyPayload, 0);
     }
 
     /** The counters so far. */
     public Counters counters() {
-        return new Counters(requests, timeouts, staleReplies, decoder.framesRejected(),
+        return new Counters(requests, timeouts, failures, staleReplies, decoder.framesRejected(),
                 decoder.bytesDiscarded());
     }
 
@@ -139,47 +153,63 @@ public final class DspClient {
         return sequence;
     }
 
-    /** Writes the frame in {@link #txFrame}; returns the sequence it carries. */
-    private int send(int frameLength, int type) throws DspException {
-        int sequence = DspProtocol.getU16(txFrame, DspProtocol.HEADER_BYTES);
-        requests++;
-        try {
-            link.write(txFrame, 0, frameLength);
-        } catch (IOException e) {
-            throw new DspException("cannot send " + DspProtocol.typeName(type) + " #" + sequence
-                    + " on " + link.name() + ": " + e.getMessage(), e);
+    /** Sends the request, resending on timeout; leaves the reply's payload in {@link #replyPayload}. */
+    private void exchange(int requestType, int replyType, double torqueNm) throws DspException {
+        for (int attempt = 1; ; attempt++) {
+            int sequence = allocateSequence();
+            int frameLength = requestType == DspProtocol.SET_TORQUE
+                    ? DspProtocol.encodeSetTorque(txFrame, sequence, torqueNm)
+                    : DspProtocol.encodeRequest(txFrame, requestType, sequence);
+            requests++;
+            try {
+                link.write(txFrame, 0, frameLength);
+            } catch (IOException e) {
+                failures++;
+                throw new DspException("cannot send " + DspProtocol.typeName(requestType) + " #"
+                        + sequence + " on " + link.name() + ": " + e.getMessage(), e);
+            }
+            if (await(replyType, sequence, requestType)) {
+                return;
+            }
+            timeouts++;
+            if (attempt == config.attempts()) {
+                failures++;
+                throw new DspTimeoutException("no " + DspProtocol.typeName(replyType) + " reply to "
+                        + DspProtocol.typeName(requestType) + " on " + link.name() + " after "
+                        + attempt + " attempt(s) of " + config.responseTimeoutNs() / 1_000
+                        + " µs (last #" + sequence + "; frames rejected so far: "
+                        + decoder.framesRejected() + ", bytes discarded: "
+                        + decoder.bytesDiscarded() + ", failed calls: " + failures + ")");
+            }
         }
-        return sequence;
     }
 
-    private void await(int type, int sequence, String request) throws DspException {
+    /** Waits for the reply to one attempt; false on timeout. */
+    private boolean await(int type, int sequence, int requestType) throws DspException {
         awaitedType = type;
         awaitedSequence = sequence;
         replied = false;
-        long startNs = clock.nanoTime();
-        long deadlineNs = startNs + config.responseTimeoutNs();
+        long deadlineNs = clock.nanoTime() + config.responseTimeoutNs();
         try {
             while (!replied) {
                 long remainingNs = deadlineNs - clock.nanoTime();
                 if (remainingNs <= 0) {
-                    timeouts++;
-                    throw new DspTimeoutException("no " + DspProtocol.typeName(type) + " reply to "
-                            + request + " #" + sequence + " on " + link.name() + " within "
-                            + config.responseTimeoutNs() / 1_000 + " µs (frames rejected so far: "
-                            + decoder.framesRejected() + ", bytes discarded: "
-                            + decoder.bytesDiscarded() + ", timeouts: " + timeouts + ")");
+                    return false;
                 }
                 int n;
                 try {
                     n = link.read(rxBuffer, 0, rxBuffer.length, remainingNs);
                 } catch (IOException e) {
-                    throw new DspException("cannot read the reply to " + request + " #" + sequence
-                            + " on " + link.name() + ": " + e.getMessage(), e);
+                    failures++;
+                    throw new DspException("cannot read the reply to "
+                            + DspProtocol.typeName(requestType) + " #" + sequence + " on "
+                            + link.name() + ": " + e.getMessage(), e);
                 }
                 if (n > 0) {
                     decoder.accept(rxBuffer, 0, n, onFrame);
                 }
             }
+            return true;
         } finally {
             awaitedType = -1;
             awaitedSequence = -1;

@@ -76,6 +76,14 @@ class LoopAnalysisTest {
         double tightRate = LoopAnalysis.slowestDecayRatePerS(
                 LoopAnalysis.ideal(MODEL, tight, periodNs), periodNs);
         assertTrue(tightRate > 2 * softRate, () -> "soft " + softRate + "/s, tight " + tightRate + "/s");
-        assertTrue(Math.abs(tight.kTheta2NmPerRad()) > 2 * Math.abs(soft.kTheta2NmPerRad()));
+        assertTrue(Math.abs(tight.kTheta1NmPerRad()) > 3 * Math.abs(soft.kTheta1NmPerRad()));
+    }
+
+    @ParameterizedTest(name = "{0}")
+    @CsvSource({"V1", "V2"})
+    void shouldStayStableWhenA15msCycleIsLostAndTheTorqueIsHeldFor30ms(String version) {
+        List<Complex> held = LoopAnalysis.asImplemented(MODEL, gains(version), 30_000_000L,
+                4_000_000L, VelocityEstimator.DEFAULT_FILTER_TIME_CONSTANT_NS);
+        LoopAnalysis.requireStable(held, 30_000_000L, 0.0, version + " at 30 ms");
     }
 }
