@@ -130,7 +130,10 @@ public final class DspClient {
         return new TorqueAck(DspProtocol.getU16(replyPayload, 0), replyPayload[2] & 0xFF);
     }
 
-    /** Reads the board's fault flags and counters. */
+    /**
+     * Reads the board's fault flags and counters. Its 40-byte reply is twice an ANGLES reply, so
+     * each attempt waits twice the response timeout.
+     */
     public BoardStatus readStatus() throws DspException {
         exchange(DspProtocol.READ_STATUS, DspProtocol.STATUS, 0.0);
         return BoardStatus.decode(replyPayload, 0);
@@ -176,7 +179,7 @@ public final class DspClient {
                 failures++;
                 throw new DspTimeoutException("no " + DspProtocol.typeName(replyType) + " reply to "
                         + DspProtocol.typeName(requestType) + " on " + link.name() + " after "
-                        + attempt + " attempt(s) of " + config.responseTimeoutNs() / 1_000
+                        + attempt + " attempt(s) of " + timeoutFor(replyType) / 1_000
                         + " µs (last #" + sequence + "; frames rejected so far: "
                         + decoder.framesRejected() + ", bytes discarded: "
                         + decoder.bytesDiscarded() + ", failed calls: " + failures + ")");
@@ -189,7 +192,7 @@ public final class DspClient {
         awaitedType = type;
         awaitedSequence = sequence;
         replied = false;
-        long deadlineNs = clock.nanoTime() + config.responseTimeoutNs();
+        long deadlineNs = clock.nanoTime() + timeoutFor(type);
         try {
             while (!replied) {
                 long remainingNs = deadlineNs - clock.nanoTime();
@@ -214,6 +217,11 @@ public final class DspClient {
             awaitedType = -1;
             awaitedSequence = -1;
         }
+    }
+
+    private long timeoutFor(int replyType) {
+        return replyType == DspProtocol.STATUS ? 2 * config.responseTimeoutNs()
+                : config.responseTimeoutNs();
     }
 
     private void onFrame(int type, byte[] payload, int offset, int length) {
