@@ -45,6 +45,35 @@ class PendulumPlantTest {
         assertTrue(ratio > 10 && ratio < 22, () -> "ratio " + ratio);
     }
 
+    /**
+     * Bytes allocated so far by the current thread. Through reflection: the tests compile inside
+     * the pendulum module, which does not read java.management (they run on the class path).
+     */
+    static long allocatedBytes() throws ReflectiveOperationException {
+        Object threads = Class.forName("java.lang.management.ManagementFactory")
+                .getMethod("getThreadMXBean").invoke(null);
+        return (long) Class.forName("com.sun.management.ThreadMXBean")
+                .getMethod("getThreadAllocatedBytes", long.class)
+                .invoke(threads, Thread.currentThread().threadId());
+    }
+
+    @Test
+    void shouldNotAllocateWhenStepping() throws ReflectiveOperationException {
+        PendulumPlant plant = new PendulumPlant(PendulumParameters.defaults().withDamping(1e-4, 1e-5),
+                LARGE_AMPLITUDE);
+        for (int i = 0; i < 20_000; i++) {
+            plant.step(0.01);
+        }
+        allocatedBytes();
+        long before = allocatedBytes();
+        for (int i = 0; i < 100_000; i++) {
+            plant.step(0.01);
+        }
+        long allocated = allocatedBytes() - before;
+        // 100k steps; a single boxed value or array per step would be megabytes.
+        assertTrue(allocated < 4_096, () -> allocated + " bytes allocated by 100000 steps");
+    }
+
     @Test
     void shouldLoseEnergyWhenFrictionIsPresent() {
         PendulumPlant plant = new PendulumPlant(PendulumParameters.defaults().withDamping(1e-3, 1e-4),

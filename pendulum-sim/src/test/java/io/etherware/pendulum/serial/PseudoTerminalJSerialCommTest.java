@@ -15,7 +15,6 @@ import io.etherware.pendulum.plant.PendulumState;
 import io.etherware.pendulum.serial.internal.PseudoTerminal;
 import java.io.ByteArrayOutputStream;
 import java.io.IOException;
-import java.util.concurrent.locks.LockSupport;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.condition.EnabledOnOs;
 import org.junit.jupiter.api.condition.OS;
@@ -59,7 +58,7 @@ class PseudoTerminalJSerialCommTest {
             BalanceControl control = new BalanceControl(GainSet.v2Tight(parameters), 0.0,
                     DspBoardConfig.DEFAULT_MAX_TORQUE_NM,
                     VelocityEstimator.DEFAULT_FILTER_TIME_CONSTANT_NS);
-            RealTimeLoop loop = new RealTimeLoop(client, control, board);
+            RealTimeControlLoop loop = new RealTimeControlLoop(client, control, board, 4_000_000_000L);
             Thread controller = RealTimePriority.fifoThreads("controller", 15).newThread(loop);
             controller.start();
             controller.join(30_000L);
@@ -75,58 +74,6 @@ class PseudoTerminalJSerialCommTest {
             assertTrue(loop.cycles >= 100, "cycles " + loop.cycles);
             assertTrue(loop.failed < loop.cycles / 4, "failed " + loop.failed + " of " + loop.cycles);
             assertEquals(0, status.framesRejected(), "a pty does not corrupt bytes");
-        }
-    }
-
-    /** The paper's 15 ms loop for 4 s, sleeping to absolute releases and skipping missed ones. */
-    private static final class RealTimeLoop implements Runnable {
-        private final DspClient client;
-        private final BalanceControl control;
-        private final DspBoard board;
-        volatile int cycles;
-        volatile int failed;
-        volatile long skipped;
-        volatile double maxAbsTheta2AfterOneSecond;
-        volatile Exception error;
-
-        RealTimeLoop(DspClient client, BalanceControl control, DspBoard board) {
-            this.client = client;
-            this.control = control;
-            this.board = board;
-        }
-
-        @Override
-        public void run() {
-            long periodNs = 15_000_000L;
-            long startNs = System.nanoTime();
-            long release = startNs;
-            try {
-                while (release - startNs < 4_000_000_000L) {
-                    LockSupport.parkNanos(release - System.nanoTime());
-                    try {
-                        Angles angles = client.readAngles();
-                        client.setTorque(control.update(angles.theta1Rad(), angles.theta2Rad(),
-                                angles.dspTimeUs()));
-                    } catch (DspTimeoutException e) {
-                        failed++;
-                    }
-                    cycles++;
-                    if (System.nanoTime() - startNs > 1_000_000_000L) {
-                        // Ground truth for the assertion only; the loop itself never reads it.
-                        maxAbsTheta2AfterOneSecond = Math.max(maxAbsTheta2AfterOneSecond,
-                                Math.abs(board.plantState().theta2Rad()));
-                    }
-                    release += periodNs;
-                    long lateNs = System.nanoTime() - release;
-                    if (lateNs > 0) {
-                        long missed = lateNs / periodNs + 1;
-                        skipped += missed;
-                        release += missed * periodNs; // skip missed releases, never burst
-                    }
-                }
-            } catch (IOException e) {
-                error = e;
-            }
         }
     }
 
