@@ -274,7 +274,7 @@ public final class DspBoard implements AutoCloseable {
         return commandedTorqueNm;
     }
 
-    /** Board time: the start of the cycle being integrated, ns since the board started. */
+    /** Board time up to which the plant has been integrated (the next cycle boundary), ns since start. */
     public synchronized long boardTimeNs() {
         return plant.timeNs();
     }

@@ -3,8 +3,8 @@ package io.etherware.pendulum.dsp;
 import io.etherware.pendulum.plant.PendulumPlant;
 
 /**
- * Settings of the simulated DSP board. Immutable; validated at construction, messages name the
- * field, the value and the allowed range.
+ * Settings of the simulated DSP board. Immutable and thread-safe; validated at construction,
+ * messages name the field, the value and the allowed range.
  *
  * @param stepNs the board's cycle and the plant's RK4 step: once per step the board serves the
  *     serial link, checks the watchdog and integrates the plant with the held torque
@@ -25,8 +25,8 @@ public record DspBoardConfig(
     /** 4096 counts per revolution. */
     public static final int DEFAULT_COUNTS_PER_REVOLUTION = 4096;
     /**
-     * 0.5 N·m: about twice the peak torque the V2 gains ask for when recovering from 0.05 rad,
-     * the range of a small direct-drive DC motor.
+     * 0.5 N·m, the range of a small direct-drive DC motor: over four times the peak torque either
+     * gain set asks for when recovering from 0.05 rad (V1 0.06 N·m, V2 0.11 N·m).
      */
     public static final double DEFAULT_MAX_TORQUE_NM = 0.5;
     /** 100 ms without a command cuts the motor. */

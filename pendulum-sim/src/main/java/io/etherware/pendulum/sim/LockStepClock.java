@@ -25,7 +25,10 @@ public final class LockStepClock implements NodeClock {
         /** The time of this participant's next event strictly after {@code nowNs}, or {@link Long#MAX_VALUE}. */
         long nextEventNs(long nowNs);
 
-        /** Catches up to {@code nowNs}, handling every event due at or before it. */
+        /**
+         * Catches up to {@code nowNs}, handling every event due at or before it. Must not wait:
+         * no blocking reads, no calls back into {@link #advanceTo} or {@link #advanceUntil}.
+         */
         void advanceTo(long nowNs);
     }
 
