@@ -1,0 +1,85 @@
+package io.etherware.pendulum.dsp;
+
+import io.etherware.pendulum.plant.PendulumPlant;
+
+/**
+ * Settings of the simulated DSP board. Immutable and thread-safe; validated at construction,
+ * messages name the field, the value and the allowed range.
+ *
+ * @param stepNs the board's cycle and the plant's RK4 step: once per step the board serves the
+ *     serial link, checks the watchdog and integrates the plant with the held torque
+ * @param countsPerRevolution encoder resolution (quadrature counts per revolution)
+ * @param maxTorqueNm the motor's torque range; commands beyond it are clamped
+ * @param watchdogTimeoutNs with no SET_TORQUE for this long the board cuts the motor and raises
+ *     its fault flag until commands resume
+ * @param maxSpinNs real-time mode only: the longest busy-wait before a step, after sleeping
+ *     (0: sleep only; never spin at real-time priority on a shared box)
+ */
+public record DspBoardConfig(
+        long stepNs,
+        int countsPerRevolution,
+        double maxTorqueNm,
+        long watchdogTimeoutNs,
+        long maxSpinNs) {
+
+    /** 4096 counts per revolution. */
+    public static final int DEFAULT_COUNTS_PER_REVOLUTION = 4096;
+    /**
+     * 0.5 N·m, the range of a small direct-drive DC motor: over four times the peak torque either
+     * gain set asks for when recovering from 0.05 rad (V1 0.06 N·m, V2 0.11 N·m).
+     */
+    public static final double DEFAULT_MAX_TORQUE_NM = 0.5;
+    /** 100 ms without a command cuts the motor. */
+    public static final long DEFAULT_WATCHDOG_TIMEOUT_NS = 100_000_000L;
+    /** At most 1 ms of busy-waiting. */
+    public static final long MAX_SPIN_LIMIT_NS = 1_000_000L;
+
+    /** Validates every field. */
+    public DspBoardConfig {
+        if (stepNs < 10_000L || stepNs > 10_000_000L) {
+            throw new IllegalArgumentException("stepNs=" + stepNs
+                    + ": must be within [10000, 10000000] (10 µs to 10 ms)");
+        }
+        if (countsPerRevolution < 4) {
+            throw new IllegalArgumentException("countsPerRevolution=" + countsPerRevolution
+                    + ": must be >= 4");
+        }
+        if (!(maxTorqueNm > 0) || !Double.isFinite(maxTorqueNm)) {
+            throw new IllegalArgumentException("maxTorqueNm=" + maxTorqueNm + ": must be finite and > 0");
+        }
+        if (watchdogTimeoutNs < stepNs) {
+            throw new IllegalArgumentException("watchdogTimeoutNs=" + watchdogTimeoutNs
+                    + ": must be at least one step (stepNs=" + stepNs + ")");
+        }
+        if (maxSpinNs < 0 || maxSpinNs > MAX_SPIN_LIMIT_NS) {
+            throw new IllegalArgumentException("maxSpinNs=" + maxSpinNs + ": must be within [0, "
+                    + MAX_SPIN_LIMIT_NS + "]");
+        }
+    }
+
+    /** 0.5 ms steps, 4096 counts, 0.5 N·m, 100 ms watchdog, no spinning. */
+    public static DspBoardConfig defaults() {
+        return new DspBoardConfig(PendulumPlant.DEFAULT_STEP_NS, DEFAULT_COUNTS_PER_REVOLUTION,
+                DEFAULT_MAX_TORQUE_NM, DEFAULT_WATCHDOG_TIMEOUT_NS, 0L);
+    }
+
+    /** A copy with another step. */
+    public DspBoardConfig withStepNs(long nanos) {
+        return new DspBoardConfig(nanos, countsPerRevolution, maxTorqueNm, watchdogTimeoutNs, maxSpinNs);
+    }
+
+    /** A copy with another watchdog timeout. */
+    public DspBoardConfig withWatchdogTimeoutNs(long nanos) {
+        return new DspBoardConfig(stepNs, countsPerRevolution, maxTorqueNm, nanos, maxSpinNs);
+    }
+
+    /** A copy with another torque range. */
+    public DspBoardConfig withMaxTorqueNm(double torqueNm) {
+        return new DspBoardConfig(stepNs, countsPerRevolution, torqueNm, watchdogTimeoutNs, maxSpinNs);
+    }
+
+    /** A copy with another spin bound. */
+    public DspBoardConfig withMaxSpinNs(long nanos) {
+        return new DspBoardConfig(stepNs, countsPerRevolution, maxTorqueNm, watchdogTimeoutNs, nanos);
+    }
+}
