@@ -32,7 +32,9 @@ public final class DispatcherRecorder {
     // Reader side, guarded by this.
     private final Histogram startLatencyTotal = new Histogram(1, HIGHEST_TRACKABLE_NS, SIGNIFICANT_DIGITS);
     private final Histogram executionTotal = new Histogram(1, HIGHEST_TRACKABLE_NS, SIGNIFICANT_DIGITS);
-    private Histogram interval;
+    // A recycled interval histogram must come from the recorder it goes back to.
+    private Histogram startLatencyInterval;
+    private Histogram executionInterval;
 
     void recordRun(long startLatencyNs, long executionNs) {
         startLatency.recordValue(clamp(startLatencyNs));
@@ -76,10 +78,10 @@ public final class DispatcherRecorder {
 
     /** Reader side: everything recorded since start. */
     public synchronized DispatcherStats snapshot(int dispatcherId) {
-        interval = startLatency.getIntervalHistogram(interval);
-        startLatencyTotal.add(interval);
-        interval = execution.getIntervalHistogram(interval);
-        executionTotal.add(interval);
+        startLatencyInterval = startLatency.getIntervalHistogram(startLatencyInterval);
+        startLatencyTotal.add(startLatencyInterval);
+        executionInterval = execution.getIntervalHistogram(executionInterval);
+        executionTotal.add(executionInterval);
         long queued = Math.max(0, enqueued.sum() - dequeued.get());
         return new DispatcherStats(dispatcherId, jobsRun.get(), jobsParked.get(), deadlineMisses.get(),
                 failures.get(), priorityBoosts.get(), queued, startLatencyTotal.copy(), executionTotal.copy());
