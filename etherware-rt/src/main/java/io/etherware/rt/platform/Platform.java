@@ -124,9 +124,11 @@ public final class Platform {
 
     /**
      * Locks the process's current and future pages in RAM ({@code mlockall(MCL_CURRENT |
-     * MCL_FUTURE)}), so a page fault never stalls a real-time thread. Use with a fixed heap
-     * ({@code -Xms} = {@code -Xmx}, {@code -XX:+AlwaysPreTouch}): every page the JVM maps from now
-     * on is locked too.
+     * MCL_FUTURE)}), so a page fault never stalls a real-time thread. Every page the JVM maps
+     * from now on is locked and populated too, thread stacks included, and the JVM maps more than
+     * its heap: a {@code -Xmx32m} JDK 25 JVM measured 315 MB resident after this call. Size the
+     * JVM for it (fixed heap {@code -Xms} = {@code -Xmx}, {@code -XX:+AlwaysPreTouch}, a bounded
+     * {@code -XX:ReservedCodeCacheSize}) and call it once, at start.
      *
      * @return empty when locked, else the refusal (also logged once)
      */

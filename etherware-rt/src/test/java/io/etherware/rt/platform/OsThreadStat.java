@@ -12,9 +12,9 @@ import java.nio.file.Path;
  * @param rtPriority field 40, {@code rt_priority}
  * @param policy     field 41, {@code policy} (0 OTHER, 1 FIFO, 2 RR)
  */
-record OsThreadStat(int rtPriority, int policy) {
+public record OsThreadStat(int rtPriority, int policy) {
 
-    static OsThreadStat of(int tid) {
+    public static OsThreadStat of(int tid) {
         try {
             String stat = Files.readString(Path.of("/proc/self/task/" + tid + "/stat"));
             // Fields after the command name, which is in parentheses and may contain spaces.
@@ -27,11 +27,11 @@ record OsThreadStat(int rtPriority, int policy) {
     }
 
     /** Whether this process holds CAP_SYS_NICE (bit 23 of CapEff), the privilege SCHED_FIFO needs. */
-    static boolean hasCapSysNice() {
+    public static boolean hasCapSysNice() {
         return hasCapability(23);
     }
 
-    static boolean hasCapability(int bit) {
+    public static boolean hasCapability(int bit) {
         try {
             for (String line : Files.readAllLines(Path.of("/proc/self/status"))) {
                 if (line.startsWith("CapEff:")) {
