@@ -107,11 +107,21 @@ public final class Dispatcher implements Runnable {
                     CpuSet.inherit(), List.of(new PlatformRefusal("thread priority", spec.policy().toString(),
                             Errno.ENOSYS, Errno.name(Errno.ENOSYS), e.toString())));
         } finally {
+            preloadPerJobClasses();
             started.countDown();
         }
         for (Job job = next(); job != null; job = next()) {
             execute(job);
         }
+    }
+
+    /**
+     * Loads and initializes the JFR event classes the per-job path uses, on this thread before it
+     * reports started, so the first message does not pay for their class loading.
+     */
+    private static void preloadPerJobClasses() {
+        new DispatchEvent().shouldCommit();
+        new DeadlineMissEvent().shouldCommit();
     }
 
     /** The next job by key then sequence, parking while there is none; null once aborted. */
