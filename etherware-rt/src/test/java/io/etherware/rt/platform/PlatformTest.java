@@ -93,6 +93,27 @@ class PlatformTest {
     }
 
     @Test
+    void shouldStartThreadsSpawnedByARealtimeThreadAtSchedOtherWhenGranted() throws Exception {
+        var platform = new Platform(new RefusalWarnings());
+        Object[] policies = onFreshThread(() -> {
+            ThreadPolicy parent = platform.configureCurrentThread(ThreadPolicy.fifo(10), CpuSet.inherit()).granted();
+            ThreadPolicy[] child = new ThreadPolicy[1];
+            Thread spawned = Thread.ofPlatform().start(() -> child[0] = platform.currentThreadPolicy());
+            try {
+                spawned.join();
+            } catch (InterruptedException e) {
+                throw new IllegalStateException(e);
+            }
+            return new Object[] {parent, child[0]};
+        });
+        assertEquals(ThreadPolicy.NON_REALTIME, policies[1],
+                "SCHED_RESET_ON_FORK: a thread a dispatcher creates does not inherit its real-time priority");
+        if (platform.isAvailable() && OsThreadStat.hasCapSysNice()) {
+            assertEquals(ThreadPolicy.fifo(10), policies[0]);
+        }
+    }
+
+    @Test
     void shouldReadTheRealtimePriorityLimitWhenOnLinux() {
         var platform = Platform.current();
         assertEquals(platform.isAvailable(), platform.realtimePriorityLimit().isPresent());

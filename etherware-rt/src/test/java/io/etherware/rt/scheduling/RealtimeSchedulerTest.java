@@ -10,6 +10,10 @@ import io.etherware.core.message.Criticality;
 import io.etherware.core.message.QoS;
 import io.etherware.core.scheduler.Job;
 import io.etherware.core.time.NodeClock;
+import io.etherware.rt.platform.OsThreadStat;
+import io.etherware.rt.platform.Platform;
+import io.etherware.rt.platform.ThreadGrant;
+import io.etherware.rt.platform.ThreadPolicy;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.ArrayList;
@@ -319,6 +323,26 @@ class RealtimeSchedulerTest {
         assertEquals(4, lines.size(), String.join("\n", lines));
         assertTrue(lines.get(2).startsWith("rt-dispatcher-2 tid="), lines.get(2));
         assertTrue(lines.get(2).contains("requested SCHED_OTHER"), lines.get(2));
+    }
+
+    @Test
+    void shouldRunDispatchersAtTableIIPrioritiesAsProcShowsWhenPrivilegedElseReportTheRefusal() {
+        start(RealtimeSchedulerConfig.defaults(), (job, nowNs) -> true, NodeClock.system());
+        var threads = scheduler.platformReport().threads();
+        boolean privileged = Platform.current().isAvailable() && OsThreadStat.hasCapSysNice();
+        int[] expected = {0, 80, 70, 60};
+        for (int id = 0; id < 4; id++) {
+            ThreadGrant grant = threads.get(id);
+            if (privileged) {
+                // /proc is read independently of the FFM calls the scheduler made.
+                OsThreadStat proc = OsThreadStat.of(grant.osThreadId());
+                assertEquals(expected[id], proc.rtPriority(), grant.toLine());
+                assertEquals(id == 0 ? 0 : 1, proc.policy(), grant.toLine());
+            } else if (id > 0) {
+                assertEquals(ThreadPolicy.NON_REALTIME, grant.granted(), grant.toLine());
+                assertFalse(grant.refusals().isEmpty(), grant.toLine());
+            }
+        }
     }
 
     @Test
