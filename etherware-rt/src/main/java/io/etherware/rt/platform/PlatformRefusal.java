@@ -4,7 +4,7 @@ import java.util.Objects;
 
 /**
  * A platform feature the OS refused (or that this platform lacks): what was asked, the errno, and
- * how to get it.
+ * how to get it. Immutable.
  *
  * @param feature   which feature: {@code thread priority}, {@code cpu affinity}, {@code memory lock}
  * @param requested what was asked, e.g. {@code SCHED_FIFO/80}

@@ -7,7 +7,7 @@ import java.util.Optional;
 
 /**
  * What a scheduler's threads asked of the OS and got: one line per dispatcher, requested vs
- * granted, plus the memory lock when one was requested. A node logs it at start.
+ * granted, plus the memory lock when one was requested. A node logs it at start. Immutable.
  *
  * @param threads             one grant per dispatcher thread, in dispatcher order
  * @param memoryLockRequested whether {@code mlockall} was requested

@@ -1,7 +1,7 @@
 package io.etherware.rt.platform;
 
 /**
- * A Linux thread scheduling policy, as set by {@code sched_setscheduler(2)}.
+ * A Linux thread scheduling policy, as set by {@code sched_setscheduler(2)}. Immutable.
  *
  * <p>{@link #FIFO} and {@link #RR} are the real-time policies: a runnable thread of a higher
  * real-time priority always runs before any lower one and before every {@link #OTHER} thread.

@@ -5,7 +5,7 @@ import java.util.Objects;
 
 /**
  * What one thread asked of the OS and what the OS granted, read back from the OS after the
- * request (not from our own bookkeeping).
+ * request (not from our own bookkeeping). Immutable.
  *
  * @param threadName    the Java thread's name
  * @param osThreadId    the kernel thread id, or -1 when unknown

@@ -4,7 +4,7 @@ import java.util.Objects;
 
 /**
  * A thread's scheduling policy and static priority: what a dispatcher asks of the OS, and what the
- * OS reports it granted.
+ * OS reports it granted. Immutable.
  *
  * <p>The record checks only what is always wrong ({@link SchedulingPolicy#OTHER} with a priority,
  * a negative priority); the real-time range (1..99 on Linux) is the OS's to enforce, so a request

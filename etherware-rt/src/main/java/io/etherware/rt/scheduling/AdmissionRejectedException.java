@@ -3,7 +3,7 @@ package io.etherware.rt.scheduling;
 /**
  * Thrown by {@link AdmissionControl#declare} in {@link AdmissionMode#REJECT} mode when a stream
  * would make its dispatcher unschedulable. The message names the dispatcher, its utilization with
- * the stream and the bound.
+ * the stream and the bound. Thrown on the declaring thread.
  */
 public final class AdmissionRejectedException extends RuntimeException {
 

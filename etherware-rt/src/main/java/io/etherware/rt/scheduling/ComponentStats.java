@@ -2,6 +2,7 @@ package io.etherware.rt.scheduling;
 
 /**
  * A snapshot of one component's time accounting since the scheduler started, over all dispatchers.
+ * Immutable.
  *
  * @param component        the component's profile text ({@code Job.targetName()})
  * @param jobsRun          jobs run to completion

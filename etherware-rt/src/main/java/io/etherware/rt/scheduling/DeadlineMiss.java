@@ -5,6 +5,7 @@ import io.etherware.core.message.MessageId;
 
 /**
  * A job that completed after its absolute deadline.
+ * Immutable; built on the dispatcher thread that ran the job.
  *
  * @param dispatcherId which dispatcher ran it
  * @param component    the receiving component's profile text

@@ -1,7 +1,7 @@
 package io.etherware.rt.scheduling;
 
 /**
- * One dispatcher's declared periodic load, as admission control sees it.
+ * One dispatcher's declared periodic load, as admission control sees it. Immutable.
  *
  * @param dispatcherId the dispatcher
  * @param policy       how its queue orders jobs

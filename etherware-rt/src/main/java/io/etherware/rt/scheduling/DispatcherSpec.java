@@ -6,7 +6,7 @@ import java.util.Objects;
 
 /**
  * One dispatcher of a {@link ThreadSchedulingRule}: the OS policy and priority its thread asks for,
- * and optionally the CPUs it may run on.
+ * and optionally the CPUs it may run on. Immutable.
  *
  * @param policy the requested policy and priority; {@link ThreadPolicy#NON_REALTIME} for an
  *               ordinary thread

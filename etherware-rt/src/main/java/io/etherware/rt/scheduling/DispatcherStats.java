@@ -4,6 +4,7 @@ import org.HdrHistogram.Histogram;
 
 /**
  * A snapshot of one dispatcher's time accounting since the scheduler started.
+ * Immutable apart from the histograms, which are the caller's copies.
  *
  * <p>The histograms are copies owned by the caller, in nanoseconds, with 2 significant digits
  * (values within 1 %), up to 60 s (longer values are recorded as 60 s).

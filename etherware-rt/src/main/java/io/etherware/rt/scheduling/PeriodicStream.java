@@ -7,7 +7,7 @@ import java.util.Objects;
 
 /**
  * A periodic stream of messages declared to admission control: every {@code periodNs} a message
- * of this QoS goes to {@code target}, whose handling takes at most {@code wcetNs}.
+ * of this QoS goes to {@code target}, whose handling takes at most {@code wcetNs}. Immutable.
  *
  * @param target the receiving component
  * @param qos    the messages' QoS; must have a period and a WCET, and WCET must not exceed the

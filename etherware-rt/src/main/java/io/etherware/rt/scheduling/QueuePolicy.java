@@ -3,7 +3,7 @@ package io.etherware.rt.scheduling;
 /**
  * How a dispatcher's queue orders its jobs, as far as schedulability analysis is concerned. A
  * {@link JobPlacementRule} states it per dispatcher; admission control picks the utilization bound
- * from it.
+ * from it. Immutable.
  *
  * <p>Dispatchers are non-preemptive among their own jobs (a job runs to completion on its
  * dispatcher thread); preemption happens between dispatchers, by OS priority. The bounds below

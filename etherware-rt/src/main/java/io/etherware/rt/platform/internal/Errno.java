@@ -5,7 +5,7 @@ import java.util.Map;
 /**
  * Linux errno numbers we meet in scheduling calls, with their symbolic names, so a warning says
  * {@code EPERM (errno 1)} rather than a bare number. Values are the Linux generic ones (x86-64,
- * aarch64).
+ * aarch64). Stateless and thread-safe.
  */
 public final class Errno {
     public static final int EPERM = 1;

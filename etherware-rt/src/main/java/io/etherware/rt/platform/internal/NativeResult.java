@@ -2,7 +2,7 @@ package io.etherware.rt.platform.internal;
 
 /**
  * The outcome of one libc call: its return value and, when it failed, the {@code errno} captured
- * right after the call (before the JVM could overwrite it).
+ * right after the call (before the JVM could overwrite it). Immutable.
  *
  * @param value the function's return value; negative means failure for every call we make
  * @param errno the captured errno when {@code value < 0}, else 0

@@ -5,7 +5,7 @@ import io.etherware.rt.platform.ThreadPolicy;
 
 /**
  * The "how to fix it" sentence of each refusal. Pure functions of what was asked and what the OS
- * said, so they are unit-testable without provoking the refusal.
+ * said, so they are unit-testable without provoking the refusal. Stateless and thread-safe.
  */
 public final class RefusalAdvice {
 

@@ -5,7 +5,7 @@ import java.util.concurrent.atomic.AtomicLong;
 
 /**
  * One component's counters. Its jobs may run on several dispatchers (one at a time), so the
- * counters are atomic; uncontended in practice.
+ * counters are atomic; uncontended in practice. Thread-safe.
  */
 public final class ComponentRecorder {
 

@@ -8,7 +8,7 @@ import jdk.jfr.Name;
 import jdk.jfr.StackTrace;
 import jdk.jfr.Timespan;
 
-/** JFR event: a job completed after its absolute deadline. */
+/** JFR event: a job completed after its absolute deadline. Committed on its dispatcher thread. */
 @Name("io.etherware.rt.DeadlineMiss")
 @Label("Deadline Miss")
 @Category({"Etherware", "Scheduling"})

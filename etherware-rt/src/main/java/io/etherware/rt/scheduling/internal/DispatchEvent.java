@@ -11,6 +11,7 @@ import jdk.jfr.Timespan;
 /**
  * JFR event: one job taken by a dispatcher, from the start of its run to its end (the event's
  * duration). In JDK Mission Control, the per-thread view of these events is the schedule.
+ * Written and committed only on its dispatcher thread.
  */
 @Name("io.etherware.rt.Dispatch")
 @Label("Dispatch")

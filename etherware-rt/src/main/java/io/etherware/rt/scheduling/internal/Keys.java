@@ -3,7 +3,7 @@ package io.etherware.rt.scheduling.internal;
 import io.etherware.core.scheduler.Job;
 import java.util.Comparator;
 
-/** Queue-key arithmetic and the order within one dispatcher's queue. */
+/** Queue-key arithmetic and the order within one dispatcher's queue. Stateless and thread-safe. */
 public final class Keys {
 
     /** Within one dispatcher: smaller key first, ties by arrival sequence. */
