@@ -6,9 +6,11 @@
  * <p>Run with {@code --enable-native-access=io.etherware.rt} (or {@code ALL-UNNAMED} on the class
  * path) so the OS calls work without the JVM's restricted-method warning.
  */
+// HdrHistogram 2.2.2 declares no module name (no module-info, no Automatic-Module-Name): its name
+// is derived from the jar, and it is transitive because DispatcherStats hands out its Histogram.
+@SuppressWarnings("requires-transitive-automatic")
 module io.etherware.rt {
     requires transitive io.etherware.core;
-    // HdrHistogram 2.2.2 declares no module name; this is the name derived from its jar.
     requires transitive HdrHistogram;
     requires jdk.jfr;
 

@@ -29,6 +29,7 @@ import java.util.Optional;
  * call; none is meant for a per-message path. Thread id {@code 0} means the calling thread: on
  * Linux {@code sched_setscheduler(0, ...)} applies to the calling thread, not the whole process.
  */
+@SuppressWarnings("restricted") // linking native functions is this class's purpose
 public final class LinuxNative {
 
     public static final int SCHED_OTHER = 0;
