@@ -11,6 +11,8 @@ final class Burners {
 
     private final List<Thread> threads;
     private volatile boolean stop;
+    /** Published so the burn loop is not optimized away. */
+    private volatile long sink;
 
     private Burners(int count, long maxMs) {
         threads = new ArrayList<>();
@@ -29,15 +31,13 @@ final class Burners {
 
     private void burn(long maxMs) {
         long endNs = System.nanoTime() + maxMs * 1_000_000L;
-        long sink = 0;
+        long value = 0;
         while (!stop && System.nanoTime() < endNs) {
             for (int i = 0; i < 10_000; i++) {
-                sink += i ^ sink;
+                value += i ^ value;
             }
         }
-        if (sink == 42) {
-            System.err.print("");
-        }
+        sink = value;
     }
 
     void stop() throws InterruptedException {

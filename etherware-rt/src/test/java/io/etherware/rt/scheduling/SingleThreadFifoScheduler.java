@@ -51,7 +51,6 @@ final class SingleThreadFifoScheduler implements Scheduler {
     public List<Job> shutdown(long timeoutNs) {
         long deadlineNs = System.nanoTime() + timeoutNs;
         while (!queue.isEmpty() && System.nanoTime() < deadlineNs) {
-            Thread.onSpinWait();
             try {
                 Thread.sleep(1);
             } catch (InterruptedException e) {
