@@ -96,7 +96,7 @@ public final class DispatchLatencyHarness {
         HarnessRun(Scheduler scheduler, CpuSet senderCpus) {
             this.scheduler = scheduler;
             this.senderCpus = senderCpus;
-            var kernel = new FakeKernel()
+            var kernel = new FakeKernel(false)
                     .on("A", (job, startNs) -> highLatencyNs.recordValue(Math.max(0, startNs - job.releaseNs())))
                     .on("B", (job, startNs) -> {
                         long endNs = System.nanoTime() + TimeUnit.MICROSECONDS.toNanos(LOW_JOB_US);
