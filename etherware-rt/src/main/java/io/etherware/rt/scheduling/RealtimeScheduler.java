@@ -1,0 +1,308 @@
+package io.etherware.rt.scheduling;
+
+import io.etherware.core.scheduler.Job;
+import io.etherware.core.scheduler.JobRunner;
+import io.etherware.core.scheduler.Scheduler;
+import io.etherware.core.time.NodeClock;
+import io.etherware.rt.platform.Platform;
+import io.etherware.rt.platform.PlatformRefusal;
+import io.etherware.rt.platform.PlatformReport;
+import io.etherware.rt.platform.ThreadGrant;
+import io.etherware.rt.scheduling.internal.ComponentRecorder;
+import io.etherware.rt.scheduling.internal.DispatchContext;
+import io.etherware.rt.scheduling.internal.Dispatcher;
+import io.etherware.rt.scheduling.internal.DispatcherRecorder;
+import java.util.ArrayList;
+import java.util.Comparator;
+import java.util.List;
+import java.util.Objects;
+import java.util.Optional;
+import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.ConcurrentMap;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicBoolean;
+import java.util.concurrent.locks.LockSupport;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+/**
+ * The Dispatching Module of paper Section IV-B (Fig. 4): N dispatchers, each a platform thread at
+ * the OS priority its {@link ThreadSchedulingRule} gives it, each with its own priority queue;
+ * a {@link JobPlacementRule} decides for every job which dispatcher runs it and with which key.
+ * Preemption happens between dispatchers, by OS priority; within a dispatcher, jobs run one after
+ * the other, smallest key first, ties by arrival.
+ *
+ * <p>With the default configuration (Table II and Algorithm 1) a HIGH message to component A
+ * never waits for LOW work on component B: they run on different threads, and the HIGH one's
+ * thread has the higher SCHED_FIFO priority.
+ *
+ * <p><b>What a HIGH message may wait for</b> (the priority inversion bound). One component handles
+ * one message at a time (design decision 3). When a HIGH message arrives for a component that is
+ * running a lower-criticality message on another dispatcher, the kernel parks it with the
+ * component; it then waits for the rest of that one message's handling, at most that handler's
+ * WCET, and nothing else: with priority inheritance (default on) the component's current
+ * dispatcher runs at the HIGH priority meanwhile, so middle-priority work cannot stretch the wait;
+ * and when the component frees up, the kernel hands it the most urgent waiting job by
+ * {@link #urgency()}, so the HIGH message goes before other waiting lower ones. A HIGH message also
+ * waits, as on any fixed-priority system, for the HIGH jobs before it on its own dispatcher.
+ *
+ * <p>Lifecycle and threading: construct, {@link #start} once, {@link #submit} from any thread
+ * (including dispatcher threads), {@link #shutdown} once. {@link #stats()}, {@link #admission()}
+ * and {@link #platformReport()} are thread-safe.
+ */
+public final class RealtimeScheduler implements Scheduler {
+
+    private static final Logger LOG = LoggerFactory.getLogger(RealtimeScheduler.class);
+    private static final long START_TIMEOUT_NS = TimeUnit.SECONDS.toNanos(10);
+    private static final long MIN_JOIN_NS = TimeUnit.MILLISECONDS.toNanos(100);
+
+    private final RealtimeSchedulerConfig config;
+    private final List<DispatcherRecorder> recorders = new ArrayList<>();
+    private final ConcurrentMap<String, ComponentRecorder> components = new ConcurrentHashMap<>();
+    private final SchedulerStats stats;
+    private final AdmissionControl admission;
+    private final Comparator<Job> urgency;
+    private final AtomicBoolean badPlacementLogged = new AtomicBoolean();
+    private final Object lifecycle = new Object();
+    private volatile DispatchContext context;
+    private volatile Dispatcher[] dispatchers;
+    private volatile PlatformReport platformReport = new PlatformReport(List.of(), false, Optional.empty());
+    private boolean shutDown;
+
+    public RealtimeScheduler(RealtimeSchedulerConfig config) {
+        this.config = Objects.requireNonNull(config, "config");
+        ThreadSchedulingRule tsr = config.threadSchedulingRule();
+        for (int i = 0; i < tsr.size(); i++) {
+            recorders.add(new DispatcherRecorder());
+        }
+        this.stats = new SchedulerStats(recorders, components);
+        this.admission = new AdmissionControl(config.placementRule(), tsr.size(), config.admissionMode());
+        this.urgency = urgencyOf(tsr);
+    }
+
+    /** A scheduler with {@link RealtimeSchedulerConfig#defaults()}: Table II and Algorithm 1. */
+    public static RealtimeScheduler withDefaults() {
+        return new RealtimeScheduler(RealtimeSchedulerConfig.defaults());
+    }
+
+    @Override
+    public String name() {
+        return config.name();
+    }
+
+    public RealtimeSchedulerConfig config() {
+        return config;
+    }
+
+    /**
+     * Locks memory if configured, starts the dispatcher threads, waits until each has asked the OS
+     * for its priority and CPUs, and logs the {@link PlatformReport}, one line per dispatcher.
+     */
+    @Override
+    public void start(JobRunner runner, NodeClock clock) {
+        synchronized (lifecycle) {
+            if (context != null || shutDown) {
+                throw new IllegalStateException("scheduler " + name() + " was already started");
+            }
+            Optional<PlatformRefusal> memoryRefusal = config.lockMemory() ? Platform.current().lockMemory()
+                    : Optional.empty();
+            var newContext = new DispatchContext(runner, clock, components, config.deadlineMissHandler(),
+                    config.priorityInheritance());
+            ThreadSchedulingRule tsr = config.threadSchedulingRule();
+            var all = new Dispatcher[tsr.size()];
+            for (int id = 0; id < all.length; id++) {
+                all[id] = new Dispatcher(id, tsr.dispatcher(id), newContext, recorders.get(id),
+                        name() + "-dispatcher-" + id);
+            }
+            newContext.setDispatchers(all);
+            for (Dispatcher dispatcher : all) {
+                dispatcher.start();
+            }
+            var grants = new ArrayList<ThreadGrant>();
+            long deadlineNs = System.nanoTime() + START_TIMEOUT_NS;
+            for (Dispatcher dispatcher : all) {
+                grants.add(awaitGrant(dispatcher, deadlineNs));
+            }
+            platformReport = new PlatformReport(grants, config.lockMemory(), memoryRefusal);
+            dispatchers = all;
+            context = newContext;
+            LOG.info("scheduler {}: placement {}, {} dispatchers {}", name(), config.placementRule(), all.length,
+                    tsr);
+            platformReport.lines().forEach(line -> LOG.info("scheduler {}: {}", name(), line));
+        }
+    }
+
+    private static ThreadGrant awaitGrant(Dispatcher dispatcher, long deadlineNs) {
+        try {
+            ThreadGrant grant = dispatcher.awaitGrant(Math.max(0, deadlineNs - System.nanoTime()));
+            if (grant == null) {
+                throw new IllegalStateException("dispatcher " + dispatcher.id() + " did not start within "
+                        + TimeUnit.NANOSECONDS.toSeconds(START_TIMEOUT_NS) + " s");
+            }
+            return grant;
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            throw new IllegalStateException("interrupted while starting dispatcher " + dispatcher.id(), e);
+        }
+    }
+
+    /**
+     * Places the job (unless it already has a placement: a parked job coming back keeps its own)
+     * and queues it on its dispatcher. Lock-free; wakes the dispatcher only if it is idle.
+     *
+     * @throws IllegalStateException before {@link #start}
+     */
+    @Override
+    public boolean submit(Job job) {
+        DispatchContext started = context;
+        if (started == null) {
+            throw new IllegalStateException("scheduler " + name() + " is not started: call start(runner, clock) first");
+        }
+        Dispatcher[] all = dispatchers;
+        if (!job.isPlaced()) {
+            place(job, started.clock().nanoTime(), all.length);
+        }
+        int dispatcherId = job.dispatcherId();
+        if (dispatcherId >= all.length) {
+            logBadPlacement(job, "was placed on dispatcher " + dispatcherId + " by another scheduler");
+            dispatcherId = 0;
+        }
+        return all[dispatcherId].offer(job);
+    }
+
+    private void place(Job job, long nowNs, int dispatcherCount) {
+        Placement placement;
+        try {
+            placement = config.placementRule().place(job, nowNs);
+        } catch (RuntimeException e) {
+            logBadPlacement(job, "made placement rule " + config.placementRule().name() + " throw " + e);
+            placement = null;
+        }
+        if (placement == null || placement.dispatcherId() >= dispatcherCount) {
+            if (placement != null) {
+                logBadPlacement(job, "was placed on dispatcher " + placement.dispatcherId() + " by "
+                        + config.placementRule().name() + ", but there are " + dispatcherCount);
+            }
+            // Never lose the message for a policy bug: run it in arrival order on dispatcher 0.
+            placement = new Placement(0, nowNs);
+        }
+        job.place(placement.dispatcherId(), placement.key());
+    }
+
+    private void logBadPlacement(Job job, String what) {
+        if (badPlacementLogged.compareAndSet(false, true)) {
+            LOG.error("scheduler {}: {} {}; running it (and any later such job) on dispatcher 0", name(), job, what);
+        }
+    }
+
+    /** Higher-priority dispatcher first (by the TSR), then smaller key, then earlier arrival. */
+    @Override
+    public Comparator<Job> urgency() {
+        return urgency;
+    }
+
+    private static Comparator<Job> urgencyOf(ThreadSchedulingRule tsr) {
+        int[] rank = new int[tsr.size()];
+        for (int id = 0; id < rank.length; id++) {
+            rank[id] = tsr.rank(id);
+        }
+        return (a, b) -> {
+            int byRank = Integer.compare(rankOf(b, rank), rankOf(a, rank));
+            if (byRank != 0) {
+                return byRank;
+            }
+            int byKey = Long.compare(a.key(), b.key());
+            return byKey != 0 ? byKey : Long.compare(a.sequence(), b.sequence());
+        };
+    }
+
+    private static int rankOf(Job job, int[] rank) {
+        int id = job.dispatcherId();
+        return id >= 0 && id < rank.length ? rank[id] : -1;
+    }
+
+    /**
+     * Stops taking new jobs (jobs that already hold their component's reservation are still
+     * taken), lets the dispatchers run what is queued until nothing is queued or running, for at
+     * most {@code timeoutNs}, then stops them (interrupting a dispatcher still inside a job).
+     */
+    @Override
+    public List<Job> shutdown(long timeoutNs) {
+        DispatchContext started;
+        Dispatcher[] all;
+        synchronized (lifecycle) {
+            if (shutDown) {
+                return List.of();
+            }
+            shutDown = true;
+            started = context;
+            all = dispatchers;
+        }
+        if (started == null) {
+            return List.of();
+        }
+        long deadlineNs = System.nanoTime() + Math.max(0, timeoutNs);
+        started.setState(DispatchContext.DRAINING);
+        while (!started.isQuiet() && System.nanoTime() < deadlineNs) {
+            LockSupport.parkNanos(TimeUnit.MILLISECONDS.toNanos(1));
+        }
+        started.setState(DispatchContext.ABORTED);
+        for (Dispatcher dispatcher : all) {
+            dispatcher.wake();
+        }
+        for (Dispatcher dispatcher : all) {
+            join(dispatcher, Math.max(MIN_JOIN_NS, deadlineNs - System.nanoTime()));
+        }
+        var leftovers = new ArrayList<Job>();
+        int[] stranded = {0};
+        long settleUntilNs = System.nanoTime() + MIN_JOIN_NS;
+        do {
+            for (Dispatcher dispatcher : all) {
+                leftovers.addAll(dispatcher.drain(stranded));
+            }
+            // A submitter that saw RUNNING just before the abort may still be adding its job.
+        } while (started.unaccounted(leftovers.size() + stranded[0]) > 0 && System.nanoTime() < settleUntilNs
+                && sleepBriefly());
+        if (stranded[0] > 0) {
+            LOG.warn("scheduler {}: {} queued jobs stay with dispatchers still inside a job after shutdown", name(),
+                    stranded[0]);
+        }
+        LOG.info("scheduler {} stopped; {} queued jobs not run", name(), leftovers.size());
+        return leftovers;
+    }
+
+    private void join(Dispatcher dispatcher, long timeoutNs) {
+        Thread thread = dispatcher.thread();
+        try {
+            if (!thread.join(java.time.Duration.ofNanos(timeoutNs))) {
+                thread.interrupt();
+                if (!thread.join(java.time.Duration.ofNanos(MIN_JOIN_NS))) {
+                    LOG.warn("scheduler {}: dispatcher {} is still inside a job after shutdown; leaving it", name(),
+                            dispatcher.id());
+                }
+            }
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
+    }
+
+    private static boolean sleepBriefly() {
+        LockSupport.parkNanos(TimeUnit.MILLISECONDS.toNanos(1));
+        return true;
+    }
+
+    /** Time accounting, live. Available before start (all zero). */
+    public SchedulerStats stats() {
+        return stats;
+    }
+
+    /** Admission control for declared periodic streams. */
+    public AdmissionControl admission() {
+        return admission;
+    }
+
+    /** What each dispatcher asked of the OS and got; empty before {@link #start}. */
+    public PlatformReport platformReport() {
+        return platformReport;
+    }
+}

@@ -1,0 +1,112 @@
+package io.etherware.rt.scheduling;
+
+import io.etherware.rt.platform.ThreadPolicy;
+import java.util.ArrayList;
+import java.util.Collections;
+import java.util.List;
+import java.util.Objects;
+
+/**
+ * The Thread Scheduling Rule (TSR) of paper Section IV-B: how many dispatchers the Dispatching
+ * Module has, and each one's OS priority and CPUs. Dispatcher {@code i} is {@code dispatchers.get(i)}.
+ *
+ * <p>{@link #tableII()} mirrors the paper's Table II: dispatcher 0 non-real-time, dispatchers 1..3
+ * real-time with descending priority. The paper's levels came from Sun Java RTS; on Linux we use
+ * SCHED_FIFO {@value #HIGH_PRIORITY}/{@value #MIDDLE_PRIORITY}/{@value #LOW_PRIORITY}: above the
+ * threaded interrupt handlers (priority 50 on PREEMPT_RT kernels), so a control loop is not held up
+ * by unrelated device interrupts, and below 99, which the kernel keeps for its own watchdog and
+ * migration threads. Real-time levels must be in 1..99.
+ *
+ * <p>Immutable and thread-safe.
+ *
+ * @param dispatchers the dispatchers, at least one
+ */
+public record ThreadSchedulingRule(List<DispatcherSpec> dispatchers) {
+
+    /** Table II's dispatcher 1 (HIGH criticality). */
+    public static final int HIGH_PRIORITY = 80;
+    /** Table II's dispatcher 2 (MIDDLE criticality). */
+    public static final int MIDDLE_PRIORITY = 70;
+    /** Table II's dispatcher 3 (LOW criticality). */
+    public static final int LOW_PRIORITY = 60;
+    /** Linux's real-time priority range. */
+    public static final int MIN_REALTIME_PRIORITY = 1;
+    public static final int MAX_REALTIME_PRIORITY = 99;
+    /** More dispatchers than this is a configuration mistake, not a design. */
+    public static final int MAX_DISPATCHERS = 64;
+
+    public ThreadSchedulingRule {
+        Objects.requireNonNull(dispatchers, "dispatchers");
+        if (dispatchers.isEmpty() || dispatchers.size() > MAX_DISPATCHERS) {
+            throw new IllegalArgumentException("dispatchers.size=" + dispatchers.size() + " must be in 1.."
+                    + MAX_DISPATCHERS);
+        }
+        for (int i = 0; i < dispatchers.size(); i++) {
+            DispatcherSpec spec = Objects.requireNonNull(dispatchers.get(i), "dispatchers[" + i + "]");
+            ThreadPolicy policy = spec.policy();
+            if (policy.isRealtime() && (policy.priority() < MIN_REALTIME_PRIORITY
+                    || policy.priority() > MAX_REALTIME_PRIORITY)) {
+                throw new IllegalArgumentException("dispatchers[" + i + "].priority=" + policy.priority()
+                        + " must be in " + MIN_REALTIME_PRIORITY + ".." + MAX_REALTIME_PRIORITY + " for "
+                        + policy.policy().osName());
+            }
+        }
+        dispatchers = List.copyOf(dispatchers);
+    }
+
+    /**
+     * The paper's Table II: dispatcher 0 SCHED_OTHER, dispatchers 1, 2, 3 SCHED_FIFO
+     * {@value #HIGH_PRIORITY}, {@value #MIDDLE_PRIORITY}, {@value #LOW_PRIORITY}.
+     */
+    public static ThreadSchedulingRule tableII() {
+        return new ThreadSchedulingRule(List.of(DispatcherSpec.nonRealtime(), DispatcherSpec.fifo(HIGH_PRIORITY),
+                DispatcherSpec.fifo(MIDDLE_PRIORITY), DispatcherSpec.fifo(LOW_PRIORITY)));
+    }
+
+    /** {@code count} ordinary dispatchers: the Dispatching Module's structure without OS priorities. */
+    public static ThreadSchedulingRule nonRealtime(int count) {
+        if (count < 1) {
+            throw new IllegalArgumentException("count=" + count + " must be >= 1");
+        }
+        return new ThreadSchedulingRule(Collections.nCopies(count, DispatcherSpec.nonRealtime()));
+    }
+
+    /** The given dispatchers, in id order. */
+    public static ThreadSchedulingRule of(DispatcherSpec... dispatchers) {
+        return new ThreadSchedulingRule(List.of(dispatchers));
+    }
+
+    /** The same dispatchers and CPUs, all SCHED_OTHER: for CPU-heavy tests and machines without privileges. */
+    public ThreadSchedulingRule withoutRealtime() {
+        var copy = new ArrayList<DispatcherSpec>();
+        dispatchers.forEach(spec -> copy.add(new DispatcherSpec(ThreadPolicy.NON_REALTIME, spec.cpus())));
+        return new ThreadSchedulingRule(copy);
+    }
+
+    public int size() {
+        return dispatchers.size();
+    }
+
+    public DispatcherSpec dispatcher(int id) {
+        return dispatchers.get(id);
+    }
+
+    /**
+     * How urgent dispatcher {@code id} is relative to the others: its real-time priority, or 0 for
+     * a non-real-time one. Higher runs first.
+     */
+    public int rank(int id) {
+        ThreadPolicy policy = dispatchers.get(id).policy();
+        return policy.isRealtime() ? policy.priority() : 0;
+    }
+
+    /** {@code [0:SCHED_OTHER, 1:SCHED_FIFO/80, ...]}. */
+    @Override
+    public String toString() {
+        var text = new StringBuilder("[");
+        for (int i = 0; i < dispatchers.size(); i++) {
+            text.append(i == 0 ? "" : ", ").append(i).append(':').append(dispatchers.get(i));
+        }
+        return text.append(']').toString();
+    }
+}

@@ -1,0 +1,342 @@
+package io.etherware.rt.scheduling.internal;
+
+import io.etherware.core.scheduler.Job;
+import io.etherware.rt.platform.CpuSet;
+import io.etherware.rt.platform.Platform;
+import io.etherware.rt.platform.PlatformRefusal;
+import io.etherware.rt.platform.ThreadGrant;
+import io.etherware.rt.platform.ThreadPolicy;
+import io.etherware.rt.platform.internal.Errno;
+import io.etherware.rt.platform.internal.LinuxNative;
+import io.etherware.rt.scheduling.DeadlineMiss;
+import io.etherware.rt.scheduling.DispatcherSpec;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.PriorityQueue;
+import java.util.concurrent.ConcurrentLinkedQueue;
+import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.locks.LockSupport;
+import java.util.concurrent.locks.ReentrantLock;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+/**
+ * One dispatcher of the Dispatching Module (paper Fig. 4): a platform thread at a fixed OS
+ * priority with its own priority queue, ordered by placement key, ties by arrival sequence.
+ *
+ * <p>Hand-off: submitters add to a lock-free intake queue and unpark the thread only if it is
+ * parked; the thread moves the intake into its private heap before every take. No submitter ever
+ * holds a lock the dispatcher needs, so a low-priority submitter preempted mid-submit cannot delay
+ * a high-priority dispatcher (no lock-holder preemption on the hand-off path). Measured with
+ * {@code DispatchLatencyHarness} on a loaded 2-vCPU VM against a PriorityBlockingQueue per
+ * dispatcher: the same p99 (about 25 µs) under the LOW flood, but a p99.9 of 0.1-0.5 ms instead
+ * of 0.2-18 ms.
+ *
+ * <p>Priority inheritance: when a job taken here is parked because its component is running on a
+ * lower-priority dispatcher, that dispatcher's thread is raised to this one's priority until its
+ * current job ends, so a HIGH job waits for at most the remainder of that one job, not for the
+ * middle-priority work that would otherwise preempt it.
+ *
+ * <p>Threading: {@link #offer} from any thread; everything else on the dispatcher thread, except
+ * {@link #inheritPriority} (from another dispatcher's thread, serialized by a lock) and the
+ * shutdown methods, documented as such.
+ */
+public final class Dispatcher implements Runnable {
+
+    private static final Logger LOG = LoggerFactory.getLogger(Dispatcher.class);
+
+    private final int id;
+    private final DispatcherSpec spec;
+    private final DispatchContext context;
+    private final DispatcherRecorder recorder;
+    private final Thread thread;
+    private final ConcurrentLinkedQueue<Job> intake = new ConcurrentLinkedQueue<>();
+    private final PriorityQueue<Job> ready = new PriorityQueue<>(64, Keys.BY_KEY_THEN_SEQUENCE);
+    private final CountDownLatch started = new CountDownLatch(1);
+    private final ReentrantLock boostLock = new ReentrantLock();
+    private volatile boolean waiting;
+    private volatile ThreadGrant grant;
+    private volatile Object runningTarget;
+    /** The priority lent to this thread by a waiting job, 0 when none. Written under boostLock. */
+    private volatile int boostedPriority;
+    private boolean failureLogged;
+
+    public Dispatcher(int id, DispatcherSpec spec, DispatchContext context, DispatcherRecorder recorder,
+                      String threadName) {
+        this.id = id;
+        this.spec = spec;
+        this.context = context;
+        this.recorder = recorder;
+        // Daemon: the application (or the node) decides when the JVM ends, and a component stuck
+        // past shutdown must not keep it alive.
+        this.thread = Thread.ofPlatform().name(threadName).daemon(true).unstarted(this);
+    }
+
+    public void start() {
+        thread.start();
+    }
+
+    /** Waits until the thread has configured itself; returns what the OS granted, or null on timeout. */
+    public ThreadGrant awaitGrant(long timeoutNs) throws InterruptedException {
+        return started.await(timeoutNs, TimeUnit.NANOSECONDS) ? grant : null;
+    }
+
+    /** Any thread: queues a placed job. False when the scheduler no longer takes it. */
+    public boolean offer(Job job) {
+        context.submitted.incrementAndGet();
+        int state = context.state;
+        if (state != DispatchContext.RUNNING && !(state == DispatchContext.DRAINING && job.isReserved())) {
+            context.finished.incrementAndGet();
+            return false;
+        }
+        intake.offer(job);
+        recorder.recordEnqueued();
+        // The intake's CAS orders this read after the enqueue; the dispatcher sets waiting before
+        // its last look at the intake, so either it sees the job or we see it waiting.
+        if (waiting) {
+            LockSupport.unpark(thread);
+        }
+        return true;
+    }
+
+    @Override
+    public void run() {
+        try {
+            grant = Platform.current().configureCurrentThread(spec.policy(), spec.cpus());
+        } catch (RuntimeException e) {
+            LOG.error("dispatcher {} could not configure its thread; it runs at the inherited priority", id, e);
+            grant = new ThreadGrant(thread.getName(), -1, spec.policy(), ThreadPolicy.NON_REALTIME, spec.cpus(),
+                    CpuSet.inherit(), List.of(new PlatformRefusal("thread priority", spec.policy().toString(),
+                            Errno.ENOSYS, Errno.name(Errno.ENOSYS), e.toString())));
+        } finally {
+            preloadPerJobClasses();
+            started.countDown();
+        }
+        for (Job job = next(); job != null; job = next()) {
+            execute(job);
+        }
+    }
+
+    /**
+     * Loads and initializes the JFR event classes the per-job path uses, on this thread before it
+     * reports started, so the first message does not pay for their class loading.
+     */
+    private static void preloadPerJobClasses() {
+        new DispatchEvent().shouldCommit();
+        new DeadlineMissEvent().shouldCommit();
+    }
+
+    /** The next job by key then sequence, parking while there is none; null once aborted. */
+    private Job next() {
+        while (true) {
+            for (Job job = intake.poll(); job != null; job = intake.poll()) {
+                ready.add(job);
+            }
+            if (context.state == DispatchContext.ABORTED) {
+                return null;
+            }
+            Job job = ready.poll();
+            if (job != null) {
+                recorder.recordDequeued();
+                return job;
+            }
+            waiting = true;
+            if (intake.isEmpty() && context.state != DispatchContext.ABORTED) {
+                LockSupport.park(this);
+                // An interrupt left behind by a component would make every later park return at
+                // once: clear it so waiting stays waiting, not spinning.
+                Thread.interrupted();
+            }
+            waiting = false;
+        }
+    }
+
+    private void execute(Job job) {
+        long startNs = context.clock.nanoTime();
+        var event = new DispatchEvent();
+        event.begin();
+        runningTarget = job.target();
+        boolean ran = true;
+        try {
+            ran = context.runner.run(job, startNs);
+        } catch (Throwable failure) {
+            recordFailure("the kernel's runner", job, failure);
+        } finally {
+            runningTarget = null;
+            if (boostedPriority != 0) {
+                endBoost();
+            }
+        }
+        long endNs = context.clock.nanoTime();
+        if (ran) {
+            account(job, startNs, endNs);
+        } else {
+            recorder.recordParked();
+            if (context.priorityInheritance) {
+                lendPriorityFor(job);
+            }
+        }
+        context.finished.incrementAndGet();
+        event.end();
+        if (event.shouldCommit()) {
+            event.dispatcher = id;
+            event.component = job.targetName();
+            event.message = job.message().messageId().toString();
+            event.criticality = job.message().qos().criticality().name();
+            event.key = job.key();
+            event.startLatency = startNs - job.releaseNs();
+            event.ran = ran;
+            event.commit();
+        }
+    }
+
+    private void account(Job job, long startNs, long endNs) {
+        long executionNs = endNs - startNs;
+        recorder.recordRun(startNs - job.releaseNs(), executionNs);
+        long deadlineNs = job.absoluteDeadlineNs();
+        boolean missed = deadlineNs != Long.MAX_VALUE && endNs > deadlineNs;
+        ComponentRecorder component = context.components.get(job.targetName());
+        if (component == null) {
+            component = context.components.computeIfAbsent(job.targetName(), name -> new ComponentRecorder());
+        }
+        component.recordRun(executionNs, missed);
+        if (missed) {
+            onMiss(job, startNs, endNs, deadlineNs);
+        }
+    }
+
+    private void onMiss(Job job, long startNs, long endNs, long deadlineNs) {
+        recorder.recordMiss();
+        var miss = new DeadlineMiss(id, job.targetName(), job.message().messageId(), job.message().qos().criticality(),
+                job.releaseNs(), startNs, endNs, deadlineNs);
+        try {
+            context.missHandler.onDeadlineMiss(miss);
+        } catch (Throwable failure) {
+            recordFailure("the deadline miss handler", job, failure);
+        }
+        var event = new DeadlineMissEvent();
+        if (event.shouldCommit()) {
+            event.dispatcher = id;
+            event.component = miss.component();
+            event.message = miss.messageId().toString();
+            event.criticality = miss.criticality().name();
+            event.lateness = miss.latenessNs();
+            event.startLatency = startNs - job.releaseNs();
+            event.executionTime = endNs - startNs;
+            event.commit();
+        }
+    }
+
+    private void recordFailure(String what, Job job, Throwable failure) {
+        recorder.recordFailure();
+        if (!failureLogged) {
+            failureLogged = true;
+            LOG.error("dispatcher {}: {} threw for {}; the dispatcher runs on (further failures are only counted)",
+                    id, what, job, failure);
+        }
+    }
+
+    // ---- priority inheritance ----
+
+    /** On this thread, after {@code job} was parked: lend our priority to whoever runs its component. */
+    private void lendPriorityFor(Job job) {
+        ThreadGrant own = grant;
+        if (own == null || !own.granted().isRealtime()) {
+            return;
+        }
+        Object target = job.target();
+        for (Dispatcher holder : context.dispatchers()) {
+            if (holder != this && holder.runningTarget == target) {
+                holder.inheritPriority(own.granted(), target);
+            }
+        }
+    }
+
+    /** From a waiting dispatcher's thread: raise this thread while it still runs {@code target}. */
+    void inheritPriority(ThreadPolicy donor, Object target) {
+        ThreadGrant own = grant;
+        if (own == null || own.osThreadId() <= 0 || donor.priority() <= basePriority(own)) {
+            return;
+        }
+        boostLock.lock();
+        try {
+            int previous = boostedPriority;
+            if (donor.priority() <= previous) {
+                return;
+            }
+            // Announce before looking: endBoost() clears runningTarget before it reads
+            // boostedPriority, so one of us sees the other (both are volatile).
+            boostedPriority = donor.priority();
+            if (runningTarget == target
+                    && LinuxNative.setScheduler(own.osThreadId(), osPolicy(donor) | LinuxNative.SCHED_RESET_ON_FORK,
+                            donor.priority()).ok()) {
+                recorder.recordBoost();
+            } else {
+                boostedPriority = previous;
+            }
+        } finally {
+            boostLock.unlock();
+        }
+    }
+
+    /** On this thread, after a job: drop a lent priority back to our own. */
+    private void endBoost() {
+        boostLock.lock();
+        try {
+            if (boostedPriority != 0) {
+                ThreadPolicy base = grant.granted();
+                LinuxNative.setScheduler(0, osPolicy(base) | (base.isRealtime() ? LinuxNative.SCHED_RESET_ON_FORK : 0),
+                        base.priority());
+                boostedPriority = 0;
+            }
+        } finally {
+            boostLock.unlock();
+        }
+    }
+
+    private static int basePriority(ThreadGrant grant) {
+        return grant.granted().isRealtime() ? grant.granted().priority() : 0;
+    }
+
+    private static int osPolicy(ThreadPolicy policy) {
+        return switch (policy.policy()) {
+            case OTHER -> LinuxNative.SCHED_OTHER;
+            case FIFO -> LinuxNative.SCHED_FIFO;
+            case RR -> LinuxNative.SCHED_RR;
+        };
+    }
+
+    // ---- shutdown (called by the scheduler's shutdown thread) ----
+
+    /** Wakes the thread so it sees the ABORTED state. */
+    public void wake() {
+        LockSupport.unpark(thread);
+    }
+
+    public Thread thread() {
+        return thread;
+    }
+
+    /**
+     * Removes every queued job. Only safe once the thread has ended (its heap is private); while
+     * it still runs, only the intake is taken and the heap's size is returned in {@code stranded}.
+     */
+    public List<Job> drain(int[] stranded) {
+        var jobs = new ArrayList<Job>();
+        for (Job job = intake.poll(); job != null; job = intake.poll()) {
+            jobs.add(job);
+        }
+        if (!thread.isAlive()) {
+            jobs.addAll(ready);
+            ready.clear();
+        } else {
+            stranded[0] += ready.size();
+        }
+        return jobs;
+    }
+
+    public int id() {
+        return id;
+    }
+}

@@ -1,0 +1,139 @@
+package io.etherware.rt.platform;
+
+import static org.junit.jupiter.api.Assertions.assertArrayEquals;
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.etherware.rt.platform.internal.RefusalWarnings;
+import java.util.List;
+import java.util.concurrent.atomic.AtomicReference;
+import java.util.function.Supplier;
+import org.junit.jupiter.api.Test;
+
+/**
+ * Real OS calls. Each request runs on a fresh thread that ends right after, so no test thread is
+ * left at a real-time priority; no thread here spins.
+ */
+class PlatformTest {
+
+    @Test
+    void shouldGrantSchedFifoAsReadBackFromTheOsWhenPrivilegedElseRefuseWithEperm() throws Exception {
+        var platform = new Platform(new RefusalWarnings());
+        var result = onFreshThread(() -> {
+            ThreadGrant grant = platform.configureCurrentThread(ThreadPolicy.fifo(10), CpuSet.inherit());
+            return new Object[] {grant, OsThreadStat.of(grant.osThreadId())};
+        });
+        ThreadGrant grant = (ThreadGrant) result[0];
+        OsThreadStat proc = (OsThreadStat) result[1];
+        if (platform.isAvailable() && OsThreadStat.hasCapSysNice()) {
+            assertEquals(ThreadPolicy.fifo(10), grant.granted(), grant.toLine());
+            assertEquals(new OsThreadStat(10, 1), proc, "what /proc says the kernel granted");
+            assertTrue(grant.refusals().isEmpty(), grant.toLine());
+            assertEquals(0, platform.warnings().warningsLogged());
+        } else {
+            assertEquals(ThreadPolicy.NON_REALTIME, grant.granted(), grant.toLine());
+            assertEquals(0, proc.policy());
+            assertEquals(1, grant.refusals().size(), grant.toLine());
+            assertEquals(1, platform.warnings().warningsLogged());
+        }
+    }
+
+    @Test
+    void shouldRefuseWithEinvalAndWarnOnceWhenPriorityIsOutOfRange() throws Exception {
+        var platform = new Platform(new RefusalWarnings());
+        List<ThreadGrant> grants = List.of(
+                onFreshThread(() -> platform.configureCurrentThread(ThreadPolicy.fifo(100), CpuSet.inherit())),
+                onFreshThread(() -> platform.configureCurrentThread(ThreadPolicy.fifo(0), CpuSet.inherit())),
+                onFreshThread(() -> platform.configureCurrentThread(ThreadPolicy.roundRobin(100), CpuSet.inherit())));
+        for (ThreadGrant grant : grants) {
+            assertEquals(ThreadPolicy.NON_REALTIME, grant.granted(), grant.toLine());
+            assertFalse(grant.isPolicyGranted());
+            PlatformRefusal refusal = grant.refusals().getFirst();
+            assertEquals("thread priority", refusal.feature());
+            if (platform.isAvailable()) {
+                assertEquals("EINVAL", refusal.errnoName(), refusal.toString());
+                assertEquals(22, refusal.errno());
+                assertTrue(refusal.fix().contains("[1, 99]"), refusal.fix());
+            } else {
+                assertEquals("ENOSYS", refusal.errnoName(), refusal.toString());
+            }
+            assertTrue(grant.toLine().contains("granted SCHED_OTHER"), grant.toLine());
+        }
+        assertEquals(1, platform.warnings().warningsLogged(), "one warning for three refusals of one kind");
+    }
+
+    @Test
+    void shouldReturnToSchedOtherWhenAskedForNonRealtime() throws Exception {
+        var platform = new Platform(new RefusalWarnings());
+        ThreadGrant grant = onFreshThread(() -> {
+            platform.configureCurrentThread(ThreadPolicy.fifo(5), CpuSet.inherit());
+            return platform.configureCurrentThread(ThreadPolicy.NON_REALTIME, CpuSet.inherit());
+        });
+        assertEquals(ThreadPolicy.NON_REALTIME, grant.granted());
+        assertTrue(grant.refusals().isEmpty(), grant.toLine());
+    }
+
+    @Test
+    void shouldPinTheThreadWhenGivenOneCpuAndRefuseWhenTheCpuDoesNotExist() throws Exception {
+        var platform = new Platform(new RefusalWarnings());
+        ThreadGrant pinned = onFreshThread(() -> platform.configureCurrentThread(ThreadPolicy.NON_REALTIME,
+                CpuSet.of(0)));
+        ThreadGrant impossible = onFreshThread(() -> platform.configureCurrentThread(ThreadPolicy.NON_REALTIME,
+                CpuSet.of(1000)));
+        if (platform.isAvailable()) {
+            assertArrayEquals(new int[] {0}, pinned.grantedCpus().cpus(), pinned.toLine());
+            assertTrue(pinned.refusals().isEmpty(), pinned.toLine());
+            assertEquals("EINVAL", impossible.refusals().getFirst().errnoName(), impossible.toLine());
+            assertTrue(impossible.refusals().getFirst().fix().contains("allowed: "), impossible.toLine());
+            assertFalse(impossible.grantedCpus().contains(1000));
+        } else {
+            assertEquals("ENOSYS", pinned.refusals().getFirst().errnoName());
+        }
+    }
+
+    @Test
+    void shouldStartThreadsSpawnedByARealtimeThreadAtSchedOtherWhenGranted() throws Exception {
+        var platform = new Platform(new RefusalWarnings());
+        Object[] policies = onFreshThread(() -> {
+            ThreadPolicy parent = platform.configureCurrentThread(ThreadPolicy.fifo(10), CpuSet.inherit()).granted();
+            ThreadPolicy[] child = new ThreadPolicy[1];
+            Thread spawned = Thread.ofPlatform().start(() -> child[0] = platform.currentThreadPolicy());
+            try {
+                spawned.join();
+            } catch (InterruptedException e) {
+                throw new IllegalStateException(e);
+            }
+            return new Object[] {parent, child[0]};
+        });
+        assertEquals(ThreadPolicy.NON_REALTIME, policies[1],
+                "SCHED_RESET_ON_FORK: a thread a dispatcher creates does not inherit its real-time priority");
+        if (platform.isAvailable() && OsThreadStat.hasCapSysNice()) {
+            assertEquals(ThreadPolicy.fifo(10), policies[0]);
+        }
+    }
+
+    @Test
+    void shouldReadTheRealtimePriorityLimitWhenOnLinux() {
+        var platform = Platform.current();
+        assertEquals(platform.isAvailable(), platform.realtimePriorityLimit().isPresent());
+        assertEquals(platform.isAvailable(), platform.currentThreadId() > 0);
+    }
+
+    private static <T> T onFreshThread(Supplier<T> action) throws InterruptedException {
+        var result = new AtomicReference<T>();
+        var failure = new AtomicReference<Throwable>();
+        Thread thread = Thread.ofPlatform().start(() -> {
+            try {
+                result.set(action.get());
+            } catch (Throwable t) {
+                failure.set(t);
+            }
+        });
+        thread.join();
+        if (failure.get() != null) {
+            throw new AssertionError("action failed on its thread", failure.get());
+        }
+        return result.get();
+    }
+}
