@@ -7,6 +7,8 @@ module io.etherware.core {
     requires com.fasterxml.jackson.databind;
     requires com.fasterxml.jackson.dataformat.xml;
 
+    exports io.etherware.core.component;
+    exports io.etherware.core.kernel;
     exports io.etherware.core.message;
     exports io.etherware.core.scheduler;
     exports io.etherware.core.time;

@@ -1,0 +1,562 @@
+package io.etherware.core.kernel.internal;
+
+import io.etherware.core.component.Component;
+import io.etherware.core.component.ComponentState;
+import io.etherware.core.component.Shell;
+import io.etherware.core.kernel.Endpoint;
+import io.etherware.core.kernel.SupervisionPolicy;
+import io.etherware.core.message.Message;
+import io.etherware.core.message.Profile;
+import io.etherware.core.scheduler.Job;
+import java.lang.invoke.MethodHandles;
+import java.lang.invoke.VarHandle;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Objects;
+import java.util.PriorityQueue;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.atomic.AtomicBoolean;
+import java.util.function.Supplier;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+/**
+ * The {@link Shell} of a component on this node: the gate that lets one job at a time into the
+ * component across all dispatchers, the waiting jobs, the lifecycle, the counters and the logic
+ * reference.
+ *
+ * <h2>The gate</h2>
+ * One int word: {@code OWNED} (someone is inside: a handler, a boundary action, or a reserved job
+ * on its way), {@code HELD} (keep arrivals, do not hand over), {@code ACTIONS} (boundary actions
+ * wait) and a count of waiting jobs. A dispatcher enters with one CAS from 0 to {@code OWNED} and
+ * leaves with one CAS back, without a lock, when nobody waits. Otherwise it takes the shell's
+ * lock: an arriving job is parked in a priority queue ordered by the scheduler's urgency (ties in
+ * arrival order) and the dispatcher moves on; the leaving owner runs the waiting boundary
+ * actions, then <em>reserves</em> the most urgent waiting job (the gate stays {@code OWNED} on its
+ * behalf) and submits it back to the scheduler, which runs it on its own dispatcher at its own
+ * priority. A reserved job always runs when taken.
+ *
+ * <h2>Why reservation keeps per-source order</h2>
+ * Say dispatcher D1 parked job A1 because the component was busy on D2, then took A2 (same source,
+ * queued after A1) and is about to run it. If D2, on leaving, freed the gate and resubmitted A1
+ * as an ordinary job, D1 could enter with A2 first. With reservation the gate stays owned for A1,
+ * so A2 parks behind it (the urgency order puts A1 first) and runs after it. In general, a job
+ * enters directly only when the gate is 0, that is when no job waits and none is reserved; every
+ * earlier job of the same source on the same dispatcher was taken before it and has run, or it
+ * waits or is reserved, so the gate is not 0.
+ *
+ * <h2>Bound on priority inversion</h2>
+ * A job waits for its component at most for the handling in progress plus the jobs already
+ * waiting that are more urgent (and the boundary actions queued before it). It never waits for
+ * work of other components, and no dispatcher ever blocks on the gate.
+ *
+ * <p>Thread-safety: the gate as described; fields marked "owner" are touched only by the thread
+ * that owns the gate, whose entry and exit are full fences (CAS or lock), so they need no
+ * further synchronization; counters are written by the owner with opaque stores.
+ */
+public final class LocalShell implements Shell {
+
+    private static final Logger log = LoggerFactory.getLogger("io.etherware.core.kernel.Supervision");
+
+    private static final int OWNED = 1;
+    private static final int HELD = 2;
+    private static final int ACTIONS = 4;
+    private static final int WAITER = 8;
+
+    private static final VarHandle GATE;
+    private static final VarHandle HANDLED;
+    private static final VarHandle FAILED;
+    private static final VarHandle RESTARTS;
+    private static final VarHandle LAST_HANDLING_NS;
+
+    static {
+        try {
+            var lookup = MethodHandles.lookup();
+            GATE = lookup.findVarHandle(LocalShell.class, "gate", int.class);
+            HANDLED = lookup.findVarHandle(LocalShell.class, "handled", long.class);
+            FAILED = lookup.findVarHandle(LocalShell.class, "failed", long.class);
+            RESTARTS = lookup.findVarHandle(LocalShell.class, "restarts", long.class);
+            LAST_HANDLING_NS = lookup.findVarHandle(LocalShell.class, "lastHandlingNs", long.class);
+        } catch (ReflectiveOperationException e) {
+            throw new ExceptionInInitializerError(e);
+        }
+    }
+
+    private final KernelCore kernel;
+    private final Profile profile;
+    private final String name;
+    private final SupervisionPolicy policy;
+    private final boolean snapshotting;
+    private final Endpoint.Local endpoint;
+    private final ShellContext context;
+    private final Object lock = new Object();
+    private final AtomicBoolean started = new AtomicBoolean();
+
+    private volatile Supplier<? extends Component> factory;
+    private volatile Component logic;
+    private volatile State lifecycle = State.CREATED;
+    private volatile boolean removed;
+
+    /** Owned by whoever adds the component until it is started. */
+    @SuppressWarnings("unused") // through GATE
+    private volatile int gate = OWNED;
+    private PriorityQueue<Job> waiting; // guarded by lock
+    private List<Runnable> actions; // guarded by lock
+
+    @SuppressWarnings("unused") // through HANDLED
+    private long handled;
+    @SuppressWarnings("unused") // through FAILED
+    private long failed;
+    @SuppressWarnings("unused") // through RESTARTS
+    private long restarts;
+    @SuppressWarnings("unused") // through LAST_HANDLING_NS
+    private long lastHandlingNs;
+
+    private ComponentState lastSnapshot; // owner
+    private final long[] restartTimesNs; // owner: ring of the latest restarts
+    private int restartHead; // owner
+    private int restartsInRing; // owner
+
+    LocalShell(KernelCore kernel, Profile profile, Supplier<? extends Component> factory, SupervisionPolicy policy) {
+        this.kernel = kernel;
+        this.profile = Objects.requireNonNull(profile, "profile");
+        this.name = profile.toString();
+        this.factory = Objects.requireNonNull(factory, "factory");
+        this.policy = Objects.requireNonNull(policy, "policy");
+        this.snapshotting = policy.restart() == SupervisionPolicy.Restart.FROM_SNAPSHOT;
+        this.restartTimesNs = new long[policy.restart() == SupervisionPolicy.Restart.STOP ? 0 : policy.maxRestarts()];
+        this.endpoint = new Endpoint.Local(this);
+        this.context = new ShellContext(kernel, this);
+        this.logic = newLogic(factory);
+    }
+
+    // ---------------------------------------------------------------- Shell
+
+    @Override
+    public Profile profile() {
+        return profile;
+    }
+
+    @Override
+    public State state() {
+        return lifecycle;
+    }
+
+    @Override
+    public long handledCount() {
+        return (long) HANDLED.getOpaque(this);
+    }
+
+    @Override
+    public long failedCount() {
+        return (long) FAILED.getOpaque(this);
+    }
+
+    @Override
+    public long restartCount() {
+        return (long) RESTARTS.getOpaque(this);
+    }
+
+    @Override
+    public long lastHandlingNs() {
+        return (long) LAST_HANDLING_NS.getOpaque(this);
+    }
+
+    @Override
+    public Class<? extends Component> logicType() {
+        return logic.getClass();
+    }
+
+    @Override
+    public String toString() {
+        return "Shell[" + name + ", " + lifecycle + "]";
+    }
+
+    String name() {
+        return name;
+    }
+
+    Endpoint.Local endpoint() {
+        return endpoint;
+    }
+
+    boolean isRemoved() {
+        return removed;
+    }
+
+    // ---------------------------------------------------------------- the gate
+
+    /**
+     * Lets {@code job} in (true: the caller now owns the gate and must call {@link #execute}), or
+     * parks it with the shell (false: it comes back reserved).
+     */
+    boolean acquireOrPark(Job job) {
+        if (GATE.compareAndSet(this, 0, OWNED)) {
+            return true;
+        }
+        synchronized (lock) {
+            while (true) {
+                int current = gate;
+                if (current == 0) {
+                    if (GATE.compareAndSet(this, 0, OWNED)) {
+                        return true;
+                    }
+                } else if (GATE.compareAndSet(this, current, current + WAITER)) {
+                    if (waiting == null) {
+                        waiting = new PriorityQueue<>(kernel.urgency());
+                    }
+                    waiting.add(job);
+                    return false;
+                }
+            }
+        }
+    }
+
+    /** Runs a job that owns the gate, then leaves the gate. */
+    void execute(Job job, long nowNs) {
+        try {
+            if (job.target() == this) {
+                handle(job.message(), nowNs);
+            } else {
+                ((PendingRequest) job.target()).settle();
+            }
+        } finally {
+            leave();
+        }
+    }
+
+    /** Leaves the gate: frees it, or runs the boundary actions and hands over to the next job. */
+    private void leave() {
+        if (!GATE.compareAndSet(this, OWNED, 0)) {
+            leaveSlowly();
+        }
+    }
+
+    private void leaveSlowly() {
+        while (true) {
+            List<Runnable> due = null;
+            Job next = null;
+            synchronized (lock) {
+                int current = gate;
+                if ((current & ACTIONS) != 0) {
+                    due = actions;
+                    actions = null;
+                    GATE.getAndBitwiseAnd(this, ~ACTIONS);
+                } else if ((current & HELD) == 0 && current >= WAITER) {
+                    next = waiting.poll();
+                    GATE.getAndAdd(this, -WAITER);
+                } else {
+                    GATE.getAndAdd(this, -OWNED);
+                    return;
+                }
+            }
+            if (due != null) {
+                due.forEach(this::runAction);
+            } else if (handOver(next)) {
+                return;
+            }
+        }
+    }
+
+    /** Submits a reserved job, which now owns the gate; false if the scheduler refused it. */
+    private boolean handOver(Job next) {
+        next.reserve();
+        if (kernel.resubmit(next)) {
+            return true;
+        }
+        kernel.discard(next);
+        return false;
+    }
+
+    /**
+     * Runs {@code action} with the gate owned, at the component's next message boundary: now on
+     * the calling thread if the gate is free, else on the thread that leaves it.
+     */
+    void atBoundary(Runnable action) {
+        synchronized (lock) {
+            while (true) {
+                int current = gate;
+                if ((current & OWNED) == 0) {
+                    if (GATE.compareAndSet(this, current, current | OWNED)) {
+                        break;
+                    }
+                } else if (GATE.compareAndSet(this, current, current | ACTIONS)) {
+                    if (actions == null) {
+                        actions = new ArrayList<>(2);
+                    }
+                    actions.add(action);
+                    return;
+                }
+            }
+        }
+        runAction(action);
+        leave();
+    }
+
+    private void runAction(Runnable action) {
+        try {
+            action.run();
+        } catch (RuntimeException | Error e) {
+            log.error("node {}: boundary action on component '{}' failed", kernel.nodeId(), name, e);
+        }
+    }
+
+    /** Boundary action: from now on, keep arrivals. */
+    void hold() {
+        GATE.getAndBitwiseOr(this, HELD);
+    }
+
+    /** Ends a hold; the kept jobs are delivered in urgency order, exactly once. */
+    void release() {
+        Job next = null;
+        synchronized (lock) {
+            while (true) {
+                int current = gate;
+                if ((current & HELD) == 0) {
+                    return;
+                }
+                if ((current & OWNED) == 0 && current >= WAITER) {
+                    if (GATE.compareAndSet(this, current, (current & ~HELD) - WAITER + OWNED)) {
+                        next = waiting.poll();
+                        break;
+                    }
+                } else if (GATE.compareAndSet(this, current, current & ~HELD)) {
+                    return; // an owner hands over when it leaves; no waiter means nothing to do
+                }
+            }
+        }
+        if (!handOver(next)) {
+            leaveSlowly();
+        }
+    }
+
+    /**
+     * At close, after the dispatchers stopped: runs the pending boundary actions and returns the
+     * jobs still waiting, for the kernel to count as discarded.
+     */
+    List<Job> closeGate() {
+        List<Runnable> due;
+        List<Job> left = new ArrayList<>();
+        synchronized (lock) {
+            due = actions;
+            actions = null;
+            if (waiting != null) {
+                left.addAll(waiting);
+                waiting.clear();
+            }
+            GATE.set(this, OWNED);
+        }
+        if (due != null) {
+            due.forEach(this::runAction);
+        }
+        return left;
+    }
+
+    // ---------------------------------------------------------------- lifecycle
+
+    /** Starts the component on the calling thread (once), then lets waiting messages in. */
+    void start() {
+        if (!started.compareAndSet(false, true)) {
+            return;
+        }
+        lifecycle = State.STARTING;
+        try {
+            Component current = logic;
+            current.onStart(context);
+            lastSnapshot = snapshotting ? current.snapshot() : null;
+            lifecycle = State.RUNNING;
+        } catch (Throwable failure) {
+            lifecycle = State.FAILED;
+            log.error("node {}: component '{}' failed to start; it is FAILED and messages to it are undeliverable",
+                    kernel.nodeId(), name, failure);
+        }
+        leave();
+    }
+
+    /** For a component removed before it was started: marks it stopped; false if it had started. */
+    boolean cancelIfUnstarted() {
+        if (!started.compareAndSet(false, true)) {
+            return false;
+        }
+        removed = true;
+        lifecycle = State.STOPPED;
+        leave();
+        return true;
+    }
+
+    /** Boundary action: stops the component; after removal, later messages are re-resolved. */
+    void stop(boolean remove) {
+        removed = remove;
+        State was = lifecycle;
+        if (was == State.RUNNING) {
+            lifecycle = State.STOPPING;
+            stopLogic(logic);
+        }
+        lifecycle = State.STOPPED;
+    }
+
+    /** At close, with the dispatchers stopped: stops the component if it runs. */
+    void stopForClose() {
+        State was = lifecycle;
+        if (was == State.RUNNING) {
+            lifecycle = State.STOPPING;
+            stopLogic(logic);
+            lifecycle = State.STOPPED;
+        } else if (was != State.FAILED) {
+            lifecycle = State.STOPPED;
+        }
+    }
+
+    private void handle(Message message, long nowNs) {
+        if (lifecycle != State.RUNNING) {
+            kernel.notRunning(this, message);
+            return;
+        }
+        Component current = logic;
+        try {
+            current.onMessage(message, context);
+            if (snapshotting) {
+                lastSnapshot = current.snapshot();
+            }
+            HANDLED.setOpaque(this, handled + 1);
+        } catch (Throwable failure) {
+            onFailure(message, failure, nowNs);
+        }
+        LAST_HANDLING_NS.setOpaque(this, kernel.clock().nanoTime() - nowNs);
+    }
+
+    // ---------------------------------------------------------------- supervision (owner thread)
+
+    private void onFailure(Message message, Throwable failure, long nowNs) {
+        long failures = failed + 1;
+        FAILED.setOpaque(this, failures);
+        kernel.reportFailure(this, message, failure, failures);
+        if (policy.restart() == SupervisionPolicy.Restart.STOP) {
+            lifecycle = State.STOPPING;
+            stopLogic(logic);
+            lifecycle = State.FAILED;
+            log.error("node {}: component '{}' stopped after its failure (policy STOP); messages to it are undeliverable",
+                    kernel.nodeId(), name);
+        } else if (withinIntensity(nowNs)) {
+            restart(nowNs);
+        } else {
+            log.error("node {}: component '{}' failed more than {} times within {} ms; escalating to the node",
+                    kernel.nodeId(), name, policy.maxRestarts(), policy.windowNs() / 1_000_000);
+            kernel.escalate(this, failure);
+        }
+    }
+
+    /** Whether one more restart stays within {@code maxRestarts} per {@code windowNs}. */
+    private boolean withinIntensity(long nowNs) {
+        int max = restartTimesNs.length;
+        if (max == 0) {
+            return false;
+        }
+        // When the ring is full, restartHead points at the oldest of the last max restarts.
+        return restartsInRing < max || nowNs - restartTimesNs[restartHead] >= policy.windowNs();
+    }
+
+    private void restart(long nowNs) {
+        restartTimesNs[restartHead] = nowNs;
+        restartHead = (restartHead + 1) % restartTimesNs.length;
+        restartsInRing = Math.min(restartsInRing + 1, restartTimesNs.length);
+        long count = restarts + 1;
+        RESTARTS.setOpaque(this, count);
+
+        boolean fromSnapshot = snapshotting && lastSnapshot != null;
+        lifecycle = State.STARTING;
+        stopLogic(logic);
+        try {
+            Component fresh = newLogic(factory);
+            if (fromSnapshot) {
+                fresh.restore(lastSnapshot);
+            }
+            fresh.onStart(context);
+            logic = fresh;
+            lifecycle = State.RUNNING;
+            log.warn("node {}: component '{}' restarted {} (restart {}, {} within the last {} ms)", kernel.nodeId(), name,
+                    fromSnapshot ? "from its last snapshot" : "fresh", count, restartsInRing, policy.windowNs() / 1_000_000);
+        } catch (Throwable failure) {
+            lifecycle = State.FAILED;
+            log.error("node {}: component '{}' could not be restarted; escalating to the node", kernel.nodeId(), name, failure);
+            kernel.escalate(this, failure);
+        }
+    }
+
+    /**
+     * Boundary action of the node-wide reset (the Management Tree's reset): a fresh instance,
+     * started, with its restart history forgotten. Removed components stay stopped.
+     */
+    void reset() {
+        if (removed || lifecycle == State.STOPPED || !started.get()) {
+            return;
+        }
+        if (lifecycle == State.RUNNING) {
+            lifecycle = State.STOPPING;
+            stopLogic(logic);
+        }
+        restartHead = 0;
+        restartsInRing = 0;
+        lastSnapshot = null;
+        lifecycle = State.STARTING;
+        try {
+            Component fresh = newLogic(factory);
+            fresh.onStart(context);
+            lastSnapshot = snapshotting ? fresh.snapshot() : null;
+            logic = fresh;
+            lifecycle = State.RUNNING;
+            log.info("node {}: component '{}' reset", kernel.nodeId(), name);
+        } catch (Throwable failure) {
+            lifecycle = State.FAILED;
+            log.error("node {}: component '{}' failed to start after the reset; it is FAILED", kernel.nodeId(), name, failure);
+        }
+    }
+
+    /**
+     * Boundary action of an upgrade: snapshot, new instance, restore, start, swap, stop the old
+     * one. If anything before the swap throws, the old logic stays and {@code done} fails.
+     */
+    void swap(Supplier<? extends Component> newFactory, CompletableFuture<Void> done) {
+        if (lifecycle != State.RUNNING) {
+            done.completeExceptionally(new IllegalStateException(
+                    "component '" + name + "' is " + lifecycle + "; only a RUNNING component can be swapped"));
+            return;
+        }
+        Component old = logic;
+        Component fresh;
+        ComponentState freshSnapshot;
+        try {
+            ComponentState state = old.snapshot();
+            fresh = newLogic(newFactory);
+            if (state != null) {
+                fresh.restore(state);
+            }
+            fresh.onStart(context);
+            freshSnapshot = snapshotting ? fresh.snapshot() : null;
+        } catch (Throwable failure) {
+            log.warn("node {}: swap of component '{}' rolled back; {} stays: {}", kernel.nodeId(), name,
+                    old.getClass().getName(), failure.toString());
+            done.completeExceptionally(failure);
+            return;
+        }
+        logic = fresh;
+        factory = newFactory;
+        lastSnapshot = freshSnapshot;
+        stopLogic(old);
+        log.info("node {}: component '{}' swapped from {} to {}", kernel.nodeId(), name, old.getClass().getName(),
+                fresh.getClass().getName());
+        done.complete(null);
+    }
+
+    private Component newLogic(Supplier<? extends Component> from) {
+        return Objects.requireNonNull(from.get(), () -> "the factory of component '" + name + "' returned null");
+    }
+
+    private void stopLogic(Component stopping) {
+        try {
+            stopping.onStop();
+        } catch (Throwable failure) {
+            log.warn("node {}: onStop of component '{}' threw; ignored", kernel.nodeId(), name, failure);
+        }
+    }
+}
