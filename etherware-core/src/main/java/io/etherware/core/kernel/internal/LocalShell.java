@@ -52,7 +52,8 @@ import org.slf4j.LoggerFactory;
  *
  * <p>Thread-safety: the gate as described; fields marked "owner" are touched only by the thread
  * that owns the gate, whose entry and exit are full fences (CAS or lock), so they need no
- * further synchronization; counters are written by the owner with opaque stores.
+ * further synchronization; counters are written by the owner with release stores and read with acquire loads (plain
+ * moves on x86), so a reader who sees a failure counted also sees the restart that followed it.
  */
 public final class LocalShell implements Shell {
 
@@ -144,22 +145,22 @@ public final class LocalShell implements Shell {
 
     @Override
     public long handledCount() {
-        return (long) HANDLED.getOpaque(this);
+        return (long) HANDLED.getAcquire(this);
     }
 
     @Override
     public long failedCount() {
-        return (long) FAILED.getOpaque(this);
+        return (long) FAILED.getAcquire(this);
     }
 
     @Override
     public long restartCount() {
-        return (long) RESTARTS.getOpaque(this);
+        return (long) RESTARTS.getAcquire(this);
     }
 
     @Override
     public long lastHandlingNs() {
-        return (long) LAST_HANDLING_NS.getOpaque(this);
+        return (long) LAST_HANDLING_NS.getAcquire(this);
     }
 
     @Override
@@ -418,19 +419,27 @@ public final class LocalShell implements Shell {
             if (snapshotting) {
                 lastSnapshot = current.snapshot();
             }
-            HANDLED.setOpaque(this, handled + 1);
+            HANDLED.setRelease(this, handled + 1);
         } catch (Throwable failure) {
             onFailure(message, failure, nowNs);
         }
-        LAST_HANDLING_NS.setOpaque(this, kernel.clock().nanoTime() - nowNs);
+        LAST_HANDLING_NS.setRelease(this, kernel.clock().nanoTime() - nowNs);
     }
 
     // ---------------------------------------------------------------- supervision (owner thread)
 
     private void onFailure(Message message, Throwable failure, long nowNs) {
         long failures = failed + 1;
-        FAILED.setOpaque(this, failures);
         kernel.reportFailure(this, message, failure, failures);
+        try {
+            applyPolicy(failure, nowNs);
+        } finally {
+            // Counted once the policy is applied, so a reader who sees the failure sees its restart.
+            FAILED.setRelease(this, failures);
+        }
+    }
+
+    private void applyPolicy(Throwable failure, long nowNs) {
         if (policy.restart() == SupervisionPolicy.Restart.STOP) {
             lifecycle = State.STOPPING;
             stopLogic(logic);
@@ -461,7 +470,7 @@ public final class LocalShell implements Shell {
         restartHead = (restartHead + 1) % restartTimesNs.length;
         restartsInRing = Math.min(restartsInRing + 1, restartTimesNs.length);
         long count = restarts + 1;
-        RESTARTS.setOpaque(this, count);
+        RESTARTS.setRelease(this, count);
 
         boolean fromSnapshot = snapshotting && lastSnapshot != null;
         lifecycle = State.STARTING;
