@@ -1,6 +1,7 @@
 package io.etherware.core.kernel;
 
 import io.etherware.core.component.Component;
+import io.etherware.core.component.ComponentState;
 import io.etherware.core.component.Shell;
 import io.etherware.core.kernel.internal.DispatcherMark;
 import io.etherware.core.kernel.internal.KernelCore;
@@ -277,6 +278,16 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
     @Override
     public CompletableFuture<Void> swapAsync(Profile profile, Supplier<? extends Component> factory) {
         return core.swapAsync(profile, factory);
+    }
+
+    @Override
+    public CompletableFuture<ComponentState> snapshotAsync(Profile profile) {
+        return core.snapshotAsync(profile);
+    }
+
+    @Override
+    public CompletableFuture<Void> relocateAsync(Profile profile, RemoteRoute route) {
+        return core.relocateAsync(profile, route);
     }
 
     @Override

@@ -1,6 +1,7 @@
 package io.etherware.core.kernel;
 
 import io.etherware.core.component.Component;
+import io.etherware.core.component.ComponentState;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageId;
 import io.etherware.core.message.Profile;
@@ -83,6 +84,23 @@ public interface Kernel {
      * and the future fails with that error. The factory is also used for later restarts.
      */
     CompletableFuture<Void> swapAsync(Profile profile, Supplier<? extends Component> factory);
+
+    /**
+     * The state of a local component at its next message boundary ({@link Component#snapshot()},
+     * possibly null). On a held component it is the state that a migration ships.
+     */
+    CompletableFuture<ComponentState> snapshotAsync(Profile profile);
+
+    /**
+     * Moves a local component's profile to another node, at the component's next message
+     * boundary: stops the component, points the profile at {@code route} and forwards the
+     * messages kept by a {@link #holdAsync hold} through it, in order, ahead of any message sent
+     * after the switch. Jobs already queued at a dispatcher for the old component follow when
+     * they are taken, so a migration should hold first and let the queues drain.
+     *
+     * @param profile the exact profile of a local component
+     */
+    CompletableFuture<Void> relocateAsync(Profile profile, RemoteRoute route);
 
     /** The node's counters now. */
     NodeStats stats();

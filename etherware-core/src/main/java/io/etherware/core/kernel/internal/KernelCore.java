@@ -1,6 +1,7 @@
 package io.etherware.core.kernel.internal;
 
 import io.etherware.core.component.Component;
+import io.etherware.core.component.ComponentState;
 import io.etherware.core.component.RequestFailedException;
 import io.etherware.core.component.RequestFailedException.Reason;
 import io.etherware.core.component.Shell;
@@ -428,10 +429,49 @@ public final class KernelCore implements Kernel, JobRunner {
         }
         var stopped = new CompletableFuture<Void>();
         shell.atBoundary(() -> {
-            shell.stop(true);
+            shell.remove();
             stopped.complete(null);
         });
         return stopped;
+    }
+
+    @Override
+    public CompletableFuture<Void> relocateAsync(Profile profile, RemoteRoute route) {
+        Objects.requireNonNull(route, "route");
+        LocalShell shell = localShell(profile);
+        if (!shell.profile().equals(profile)) {
+            throw new IllegalArgumentException("relocate needs the exact profile '" + shell.profile() + "', not a query");
+        }
+        var relocated = new CompletableFuture<Void>();
+        shell.atBoundary(() -> {
+            try {
+                shell.relocate(registry, new Endpoint.Remote(route));
+                shells.remove(shell);
+                relocated.complete(null);
+            } catch (RuntimeException e) {
+                relocated.completeExceptionally(e);
+            }
+        });
+        return relocated;
+    }
+
+    @Override
+    public CompletableFuture<ComponentState> snapshotAsync(Profile profile) {
+        LocalShell shell = localShell(profile);
+        var state = new CompletableFuture<ComponentState>();
+        shell.atBoundary(() -> {
+            try {
+                state.complete(shell.snapshotNow());
+            } catch (Throwable e) {
+                state.completeExceptionally(e);
+            }
+        });
+        return state;
+    }
+
+    /** Hands a message to a route; a refusal makes it undeliverable. */
+    void forward(Message message, RemoteRoute route) {
+        deliverRemote(message, route);
     }
 
     public Shell shell(Profile profile) {

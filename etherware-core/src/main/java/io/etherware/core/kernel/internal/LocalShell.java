@@ -385,15 +385,51 @@ public final class LocalShell implements Shell {
         return true;
     }
 
-    /** Boundary action: stops the component; after removal, later messages are re-resolved. */
-    void stop(boolean remove) {
-        removed = remove;
-        State was = lifecycle;
-        if (was == State.RUNNING) {
+    /**
+     * Boundary action of removal: stops the component and ends a hold, so the kept messages, and
+     * any that still reach this shell, are resolved anew (they follow the profile elsewhere, or
+     * go back to their senders as undeliverable).
+     */
+    void remove() {
+        removed = true;
+        stopRunningLogic();
+        GATE.getAndBitwiseAnd(this, ~HELD);
+    }
+
+    private void stopRunningLogic() {
+        if (lifecycle == State.RUNNING) {
             lifecycle = State.STOPPING;
             stopLogic(logic);
         }
         lifecycle = State.STOPPED;
+    }
+
+    /**
+     * Boundary action of a migration: stops the component, points its profile at {@code to} and
+     * forwards the kept messages there, in urgency order, before any message sent after the
+     * switch can reach the route through this node.
+     */
+    void relocate(ProfileTable registry, Endpoint.Remote to) {
+        removed = true;
+        stopRunningLogic();
+        synchronized (lock) {
+            // New arrivals park on this lock meanwhile, so the kept messages go out first.
+            if (!registry.replace(profile, endpoint, to)) {
+                throw new IllegalStateException("profile '" + name + "' was re-registered during the relocation");
+            }
+            GATE.getAndBitwiseAnd(this, ~HELD);
+            if (waiting != null) {
+                for (Job kept; (kept = waiting.poll()) != null; ) {
+                    GATE.getAndAdd(this, -WAITER);
+                    kernel.forward(kept.message(), to.route());
+                }
+            }
+        }
+    }
+
+    /** Boundary action: the component's state now, or null. */
+    ComponentState snapshotNow() throws Exception {
+        return logic.snapshot();
     }
 
     /** At close, with the dispatchers stopped: stops the component if it runs. */

@@ -151,6 +151,18 @@ public final class ProfileTable implements ProfileRegistry {
         table = new Table(copy);
     }
 
+    /** Points {@code profile} at {@code replacement} if it still maps to {@code expected}. */
+    public synchronized boolean replace(Profile profile, Endpoint expected, Endpoint replacement) {
+        Objects.requireNonNull(replacement, "replacement");
+        if (table.exact.get(profile) != expected) {
+            return false;
+        }
+        var copy = new HashMap<>(table.exact);
+        copy.put(profile, replacement);
+        table = new Table(copy);
+        return true;
+    }
+
     /** Removes {@code profile} if it still maps to {@code expected}; returns whether it did. */
     public synchronized boolean unregister(Profile profile, Endpoint expected) {
         if (table.exact.get(profile) != expected) {
