@@ -214,6 +214,36 @@ class ManagementHooksTest {
     }
 
     @Test
+    void shouldSettleAKeptRequestOutcomeLocallyWhenRelocated() throws Exception {
+        var forwarded = new CopyOnWriteArrayList<Message>();
+        var replyNow = new CountDownLatch(1);
+        var outcome = new CompletableFuture<Message>();
+        try (var node = EtherwareNode.builder().nodeId("relocate-outcome").build()) {
+            node.add(MARKER, () -> (message, context) -> Thread.ofPlatform().start(() -> {
+                try {
+                    replyNow.await(30, TimeUnit.SECONDS);
+                } catch (InterruptedException e) {
+                    return;
+                }
+                context.reply(message, new Text("answer"));
+            }));
+            node.add(TARGET, () -> (message, context) -> context.request(MARKER, new Text("question"))
+                    .whenComplete((reply, error) -> outcome.complete(reply)));
+            node.start();
+            node.send(TARGET, new Text("ask"));
+            Await.until("the question is asked", () -> node.shell(MARKER).handledCount() == 1);
+            node.hold(TARGET);
+            replyNow.countDown();
+            Await.until("the reply reaches the kernel", () -> node.stats().jobs() == 3);
+            assertFalse(outcome.isDone(), "the outcome is kept while the requester is held");
+
+            node.relocateAsync(TARGET, forwarded::add).get(30, TimeUnit.SECONDS);
+            assertEquals(new Text("answer"), outcome.get(30, TimeUnit.SECONDS).contents());
+            assertEquals(List.of(), forwarded, "a request outcome is not a message for the new host");
+        }
+    }
+
+    @Test
     void shouldResolveTheKeptMessagesAnewWhenAHeldComponentIsRemoved() {
         var received = new CopyOnWriteArrayList<Long>();
         try (var node = EtherwareNode.builder().nodeId("remove-held").build()) {

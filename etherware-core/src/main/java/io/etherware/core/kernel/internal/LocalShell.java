@@ -52,8 +52,9 @@ import org.slf4j.LoggerFactory;
  *
  * <p>Thread-safety: the gate as described; fields marked "owner" are touched only by the thread
  * that owns the gate, whose entry and exit are full fences (CAS or lock), so they need no
- * further synchronization; counters are written by the owner with release stores and read with acquire loads (plain
- * moves on x86), so a reader who sees a failure counted also sees the restart that followed it.
+ * further synchronization. Counters are written by the owner with release stores and read with
+ * acquire loads (plain moves on x86), so a reader who sees a failure counted also sees the
+ * restart that followed it.
  */
 public final class LocalShell implements Shell {
 
@@ -421,7 +422,12 @@ public final class LocalShell implements Shell {
             if (waiting != null) {
                 for (Job kept; (kept = waiting.poll()) != null; ) {
                     GATE.getAndAdd(this, -WAITER);
-                    kernel.forward(kept.message(), to.route());
+                    if (kept.target() == this) {
+                        kernel.forward(kept.message(), to.route());
+                    } else {
+                        // The outcome of a request this (now stopped) instance made: it is local.
+                        ((PendingRequest) kept.target()).settle();
+                    }
                 }
             }
         }
