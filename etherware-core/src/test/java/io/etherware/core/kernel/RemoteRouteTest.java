@@ -11,6 +11,7 @@ import io.etherware.core.component.RequestFailedException;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
 import io.etherware.core.message.Text;
+import io.etherware.core.testing.Await;
 import io.etherware.core.testing.Num;
 import java.util.concurrent.ExecutionException;
 import java.util.concurrent.ExecutorService;
@@ -80,7 +81,7 @@ class RemoteRouteTest {
         assertEquals(new Num(42), reply.contents());
         assertEquals(ECHO, reply.sender());
         assertEquals("a", reply.correlationId().nodeId());
-        assertEquals(1, nodeB.shell(ECHO).handledCount());
+        Await.until("the echo's handling is counted", () -> nodeB.shell(ECHO).handledCount() == 1);
     }
 
     @Test

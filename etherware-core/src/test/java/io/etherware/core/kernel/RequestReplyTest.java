@@ -242,7 +242,8 @@ class RequestReplyTest {
             assertEquals(Reason.RESPONDER_FAILED, failure.reason());
             assertTrue(failure.getMessage().contains("responder 'echo'"), failure.getMessage());
             assertTrue(failure.getMessage().contains("IllegalStateException: sensor saturated"), failure.getMessage());
-            assertEquals(1, node.stats().failed());
+            Await.until("the failure is counted", () -> node.stats().failed() == 1);
+            assertEquals(1, node.stats().restarts());
         }
     }
 
