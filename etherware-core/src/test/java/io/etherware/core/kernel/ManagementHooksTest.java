@@ -102,6 +102,56 @@ class ManagementHooksTest {
     }
 
     @Test
+    void shouldDeliverEveryMessageExactlyOnceWhenHeldSwappedAndReleasedRepeatedlyUnderLoad() throws Exception {
+        int senders = 3;
+        int perSender = 20_000;
+        var seen = java.util.concurrent.ConcurrentHashMap.<Long>newKeySet();
+        var duplicates = new java.util.concurrent.atomic.AtomicLong();
+        var overlaps = new java.util.concurrent.atomic.AtomicLong();
+        var inside = new java.util.concurrent.atomic.AtomicBoolean();
+        try (var node = EtherwareNode.builder().nodeId("hold-stress")
+                .scheduler(() -> MultiDispatcherScheduler.roundRobin(3)).build()) {
+            java.util.function.Supplier<Component> logic = () -> (message, context) -> {
+                if (!inside.compareAndSet(false, true)) {
+                    overlaps.incrementAndGet();
+                }
+                if (!seen.add(message.contentsAs(Num.class).value())) {
+                    duplicates.incrementAndGet();
+                }
+                inside.set(false);
+            };
+            Shell shell = node.add(TARGET, logic);
+            node.start();
+            var threads = new java.util.ArrayList<Thread>();
+            for (int s = 0; s < senders; s++) {
+                long base = (long) s * perSender;
+                threads.add(Thread.ofPlatform().start(() -> {
+                    for (long i = 0; i < perSender; i++) {
+                        node.send(TARGET, new Num(base + i));
+                    }
+                }));
+            }
+            int cycles = 0;
+            while (threads.stream().anyMatch(Thread::isAlive) || cycles < 20) {
+                node.hold(TARGET);
+                if (cycles % 4 == 0) {
+                    node.swap(TARGET, logic); // a swap while held: the gate is taken, then left held
+                }
+                node.release(TARGET);
+                cycles++;
+            }
+            for (Thread thread : threads) {
+                thread.join();
+            }
+            Await.until("every message", () -> shell.handledCount() == (long) senders * perSender);
+            assertEquals((long) senders * perSender, seen.size());
+            assertEquals(0, duplicates.get());
+            assertEquals(0, overlaps.get());
+            assertTrue(cycles >= 20);
+        }
+    }
+
+    @Test
     void shouldReturnFromHoldOnlyOnceTheHandlingInProgressIsOver() throws Exception {
         var entered = new CountDownLatch(1);
         var finish = new CountDownLatch(1);
