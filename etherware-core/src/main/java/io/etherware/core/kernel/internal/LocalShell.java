@@ -10,10 +10,8 @@ import io.etherware.core.message.Profile;
 import io.etherware.core.scheduler.Job;
 import java.lang.invoke.MethodHandles;
 import java.lang.invoke.VarHandle;
-import java.util.ArrayList;
 import java.util.List;
 import java.util.Objects;
-import java.util.PriorityQueue;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.atomic.AtomicBoolean;
 import java.util.function.Supplier;
@@ -21,51 +19,22 @@ import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
 /**
- * The {@link Shell} of a component on this node: the gate that lets one job at a time into the
- * component across all dispatchers, the waiting jobs, the lifecycle, the counters and the logic
- * reference.
+ * The {@link Shell} of a component on this node: its {@link ComponentGate} (one job at a time,
+ * across all dispatchers), lifecycle, counters, logic reference, and the supervision steps that
+ * run on the owning thread: restart, reset, swap, stop.
  *
- * <h2>The gate</h2>
- * One int word: {@code OWNED} (someone is inside: a handler, a boundary action, or a reserved job
- * on its way), {@code HELD} (keep arrivals, do not hand over), {@code ACTIONS} (boundary actions
- * wait) and a count of waiting jobs. A dispatcher enters with one CAS from 0 to {@code OWNED} and
- * leaves with one CAS back, without a lock, when nobody waits. Otherwise it takes the shell's
- * lock: an arriving job is parked in a priority queue ordered by the scheduler's urgency (ties in
- * arrival order) and the dispatcher moves on; the leaving owner runs the waiting boundary
- * actions, then <em>reserves</em> the most urgent waiting job (the gate stays {@code OWNED} on its
- * behalf) and submits it back to the scheduler, which runs it on its own dispatcher at its own
- * priority. A reserved job always runs when taken.
+ * <p>A message waits for its component at most for the handling in progress plus the more urgent
+ * messages already waiting for it (see {@link ComponentGate}).
  *
- * <h2>Why reservation keeps per-source order</h2>
- * Say dispatcher D1 parked job A1 because the component was busy on D2, then took A2 (same source,
- * queued after A1) and is about to run it. If D2, on leaving, freed the gate and resubmitted A1
- * as an ordinary job, D1 could enter with A2 first. With reservation the gate stays owned for A1,
- * so A2 parks behind it (the urgency order puts A1 first) and runs after it. In general, a job
- * enters directly only when the gate is 0, that is when no job waits and none is reserved; every
- * earlier job of the same source on the same dispatcher was taken before it and has run, or it
- * waits or is reserved, so the gate is not 0.
- *
- * <h2>Bound on priority inversion</h2>
- * A job waits for its component at most for the handling in progress plus the jobs already
- * waiting that are more urgent (and the boundary actions queued before it). It never waits for
- * work of other components, and no dispatcher ever blocks on the gate.
- *
- * <p>Thread-safety: the gate as described; fields marked "owner" are touched only by the thread
- * that owns the gate, whose entry and exit are full fences (CAS or lock), so they need no
- * further synchronization. Counters are written by the owner with release stores and read with
- * acquire loads (plain moves on x86), so a reader who sees a failure counted also sees the
- * restart that followed it.
+ * <p>Thread-safety: fields marked "owner" are touched only by the thread that owns the gate,
+ * whose entry and exit are full fences, so they need no further synchronization. Counters are
+ * written by the owner with release stores and read with acquire loads (plain moves on x86), so
+ * a reader who sees a failure counted also sees the restart that followed it.
  */
 public final class LocalShell implements Shell {
 
     private static final Logger log = LoggerFactory.getLogger("io.etherware.core.kernel.Supervision");
 
-    private static final int OWNED = 1;
-    private static final int HELD = 2;
-    private static final int ACTIONS = 4;
-    private static final int WAITER = 8;
-
-    private static final VarHandle GATE;
     private static final VarHandle HANDLED;
     private static final VarHandle FAILED;
     private static final VarHandle RESTARTS;
@@ -74,7 +43,6 @@ public final class LocalShell implements Shell {
     static {
         try {
             var lookup = MethodHandles.lookup();
-            GATE = lookup.findVarHandle(LocalShell.class, "gate", int.class);
             HANDLED = lookup.findVarHandle(LocalShell.class, "handled", long.class);
             FAILED = lookup.findVarHandle(LocalShell.class, "failed", long.class);
             RESTARTS = lookup.findVarHandle(LocalShell.class, "restarts", long.class);
@@ -91,19 +59,13 @@ public final class LocalShell implements Shell {
     private final boolean snapshotting;
     private final Endpoint.Local endpoint;
     private final ShellContext context;
-    private final Object lock = new Object();
+    private final ComponentGate gate;
     private final AtomicBoolean started = new AtomicBoolean();
 
     private volatile Supplier<? extends Component> factory;
     private volatile Component logic;
     private volatile State lifecycle = State.CREATED;
     private volatile boolean removed;
-
-    /** Owned by whoever adds the component until it is started. */
-    @SuppressWarnings("unused") // through GATE
-    private volatile int gate = OWNED;
-    private PriorityQueue<Job> waiting; // guarded by lock
-    private List<Runnable> actions; // guarded by lock
 
     @SuppressWarnings("unused") // through HANDLED
     private long handled;
@@ -128,6 +90,7 @@ public final class LocalShell implements Shell {
         this.snapshotting = policy.restart() == SupervisionPolicy.Restart.FROM_SNAPSHOT;
         this.restartTimesNs = new long[policy.restart() == SupervisionPolicy.Restart.STOP ? 0 : policy.maxRestarts()];
         this.endpoint = new Endpoint.Local(this);
+        this.gate = new ComponentGate(kernel, name);
         this.context = new ShellContext(kernel, this);
         this.logic = newLogic(factory);
     }
@@ -188,30 +151,9 @@ public final class LocalShell implements Shell {
 
     // ---------------------------------------------------------------- the gate
 
-    /**
-     * Lets {@code job} in (true: the caller now owns the gate and must call {@link #execute}), or
-     * parks it with the shell (false: it comes back reserved).
-     */
+    /** See {@link ComponentGate#enterOrPark}. */
     boolean acquireOrPark(Job job) {
-        if (GATE.compareAndSet(this, 0, OWNED)) {
-            return true;
-        }
-        synchronized (lock) {
-            while (true) {
-                int current = gate;
-                if (current == 0) {
-                    if (GATE.compareAndSet(this, 0, OWNED)) {
-                        return true;
-                    }
-                } else if (GATE.compareAndSet(this, current, current + WAITER)) {
-                    if (waiting == null) {
-                        waiting = new PriorityQueue<>(kernel.urgency());
-                    }
-                    waiting.add(job);
-                    return false;
-                }
-            }
-        }
+        return gate.enterOrPark(job);
     }
 
     /** Runs a job that owns the gate, then leaves the gate. */
@@ -223,135 +165,28 @@ public final class LocalShell implements Shell {
                 ((PendingRequest) job.target()).settle();
             }
         } finally {
-            leave();
+            gate.leave();
         }
     }
 
-    /** Leaves the gate: frees it, or runs the boundary actions and hands over to the next job. */
-    private void leave() {
-        if (!GATE.compareAndSet(this, OWNED, 0)) {
-            leaveSlowly();
-        }
-    }
-
-    private void leaveSlowly() {
-        while (true) {
-            List<Runnable> due = null;
-            Job next = null;
-            synchronized (lock) {
-                int current = gate;
-                if ((current & ACTIONS) != 0) {
-                    due = actions;
-                    actions = null;
-                    GATE.getAndBitwiseAnd(this, ~ACTIONS);
-                } else if ((current & HELD) == 0 && current >= WAITER) {
-                    next = waiting.poll();
-                    GATE.getAndAdd(this, -WAITER);
-                } else {
-                    GATE.getAndAdd(this, -OWNED);
-                    return;
-                }
-            }
-            if (due != null) {
-                due.forEach(this::runAction);
-            } else if (handOver(next)) {
-                return;
-            }
-        }
-    }
-
-    /** Submits a reserved job, which now owns the gate; false if the scheduler refused it. */
-    private boolean handOver(Job next) {
-        next.reserve();
-        if (kernel.resubmit(next)) {
-            return true;
-        }
-        kernel.discard(next);
-        return false;
-    }
-
-    /**
-     * Runs {@code action} with the gate owned, at the component's next message boundary: now on
-     * the calling thread if the gate is free, else on the thread that leaves it.
-     */
+    /** See {@link ComponentGate#atBoundary}. */
     void atBoundary(Runnable action) {
-        synchronized (lock) {
-            while (true) {
-                int current = gate;
-                if ((current & OWNED) == 0) {
-                    if (GATE.compareAndSet(this, current, current | OWNED)) {
-                        break;
-                    }
-                } else if (GATE.compareAndSet(this, current, current | ACTIONS)) {
-                    if (actions == null) {
-                        actions = new ArrayList<>(2);
-                    }
-                    actions.add(action);
-                    return;
-                }
-            }
-        }
-        runAction(action);
-        leave();
-    }
-
-    private void runAction(Runnable action) {
-        try {
-            action.run();
-        } catch (RuntimeException | Error e) {
-            log.error("node {}: boundary action on component '{}' failed", kernel.nodeId(), name, e);
-        }
+        gate.atBoundary(action);
     }
 
     /** Boundary action: from now on, keep arrivals. */
     void hold() {
-        GATE.getAndBitwiseOr(this, HELD);
+        gate.hold();
     }
 
     /** Ends a hold; the kept jobs are delivered in urgency order, exactly once. */
     void release() {
-        Job next = null;
-        synchronized (lock) {
-            while (true) {
-                int current = gate;
-                if ((current & HELD) == 0) {
-                    return;
-                }
-                if ((current & OWNED) == 0 && current >= WAITER) {
-                    if (GATE.compareAndSet(this, current, (current & ~HELD) - WAITER + OWNED)) {
-                        next = waiting.poll();
-                        break;
-                    }
-                } else if (GATE.compareAndSet(this, current, current & ~HELD)) {
-                    return; // an owner hands over when it leaves; no waiter means nothing to do
-                }
-            }
-        }
-        if (!handOver(next)) {
-            leaveSlowly();
-        }
+        gate.release();
     }
 
-    /**
-     * At close, after the dispatchers stopped: runs the pending boundary actions and returns the
-     * jobs still waiting, for the kernel to count as discarded.
-     */
+    /** See {@link ComponentGate#close()}. */
     List<Job> closeGate() {
-        List<Runnable> due;
-        List<Job> left = new ArrayList<>();
-        synchronized (lock) {
-            due = actions;
-            actions = null;
-            if (waiting != null) {
-                left.addAll(waiting);
-                waiting.clear();
-            }
-            GATE.set(this, OWNED);
-        }
-        if (due != null) {
-            due.forEach(this::runAction);
-        }
-        return left;
+        return gate.close();
     }
 
     // ---------------------------------------------------------------- lifecycle
@@ -372,7 +207,7 @@ public final class LocalShell implements Shell {
             log.error("node {}: component '{}' failed to start; it is FAILED and messages to it are undeliverable",
                     kernel.nodeId(), name, failure);
         }
-        leave();
+        gate.leave();
     }
 
     /** For a component removed before it was started: marks it stopped; false if it had started. */
@@ -382,7 +217,7 @@ public final class LocalShell implements Shell {
         }
         removed = true;
         lifecycle = State.STOPPED;
-        leave();
+        gate.leave();
         return true;
     }
 
@@ -394,7 +229,7 @@ public final class LocalShell implements Shell {
     void remove() {
         removed = true;
         stopRunningLogic();
-        GATE.getAndBitwiseAnd(this, ~HELD);
+        gate.endHoldOnLeave();
     }
 
     private void stopRunningLogic() {
@@ -413,24 +248,19 @@ public final class LocalShell implements Shell {
     void relocate(ProfileTable registry, Endpoint.Remote to) {
         removed = true;
         stopRunningLogic();
-        synchronized (lock) {
-            // New arrivals park on this lock meanwhile, so the kept messages go out first.
+        // New arrivals park at the gate meanwhile, so the kept messages go out first.
+        gate.drainKept(() -> {
             if (!registry.replace(profile, endpoint, to)) {
                 throw new IllegalStateException("profile '" + name + "' was re-registered during the relocation");
             }
-            GATE.getAndBitwiseAnd(this, ~HELD);
-            if (waiting != null) {
-                for (Job kept; (kept = waiting.poll()) != null; ) {
-                    GATE.getAndAdd(this, -WAITER);
-                    if (kept.target() == this) {
-                        kernel.forward(kept.message(), to.route());
-                    } else {
-                        // The outcome of a request this (now stopped) instance made: it is local.
-                        ((PendingRequest) kept.target()).settle();
-                    }
-                }
+        }, kept -> {
+            if (kept.target() == this) {
+                kernel.forward(kept.message(), to.route());
+            } else {
+                // The outcome of a request this (now stopped) instance made: it is local.
+                ((PendingRequest) kept.target()).settle();
             }
-        }
+        });
     }
 
     /** Boundary action: the component's state now, or null. */
