@@ -8,6 +8,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import io.etherware.core.component.RequestFailedException;
 import io.etherware.core.component.Shell;
 import io.etherware.core.message.Profile;
+import io.etherware.core.message.QoS;
 import io.etherware.core.message.Text;
 import io.etherware.core.testing.Await;
 import io.etherware.core.testing.MultiDispatcherScheduler;
@@ -68,7 +69,7 @@ class CloseTest {
         var node = EtherwareNode.builder().nodeId("close-requests").drainTimeout(Duration.ZERO).build();
         node.add(SLOW, () -> (message, context) -> { }); // never replies
         node.start();
-        CompletableFuture<?> reply = node.request(SLOW, new Text("?"), io.etherware.core.message.QoS.NONE,
+        CompletableFuture<?> reply = node.request(SLOW, new Text("?"), QoS.NONE,
                 TimeUnit.MINUTES.toNanos(5));
         Await.until("the request is handled", () -> node.shell(SLOW).handledCount() == 1);
         node.close();

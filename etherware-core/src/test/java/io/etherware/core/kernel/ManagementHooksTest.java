@@ -17,11 +17,16 @@ import io.etherware.core.testing.Await;
 import io.etherware.core.testing.Counted;
 import io.etherware.core.testing.MultiDispatcherScheduler;
 import io.etherware.core.testing.Num;
+import java.util.ArrayList;
 import java.util.List;
 import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicBoolean;
+import java.util.concurrent.atomic.AtomicLong;
+import java.util.function.Supplier;
 import java.util.stream.LongStream;
 import org.junit.jupiter.api.Test;
 
@@ -105,13 +110,13 @@ class ManagementHooksTest {
     void shouldDeliverEveryMessageExactlyOnceWhenHeldSwappedAndReleasedRepeatedlyUnderLoad() throws Exception {
         int senders = 3;
         int perSender = 20_000;
-        var seen = java.util.concurrent.ConcurrentHashMap.<Long>newKeySet();
-        var duplicates = new java.util.concurrent.atomic.AtomicLong();
-        var overlaps = new java.util.concurrent.atomic.AtomicLong();
-        var inside = new java.util.concurrent.atomic.AtomicBoolean();
+        var seen = ConcurrentHashMap.<Long>newKeySet();
+        var duplicates = new AtomicLong();
+        var overlaps = new AtomicLong();
+        var inside = new AtomicBoolean();
         try (var node = EtherwareNode.builder().nodeId("hold-stress")
                 .scheduler(() -> MultiDispatcherScheduler.roundRobin(3)).build()) {
-            java.util.function.Supplier<Component> logic = () -> (message, context) -> {
+            Supplier<Component> logic = () -> (message, context) -> {
                 if (!inside.compareAndSet(false, true)) {
                     overlaps.incrementAndGet();
                 }
@@ -122,7 +127,7 @@ class ManagementHooksTest {
             };
             Shell shell = node.add(TARGET, logic);
             node.start();
-            var threads = new java.util.ArrayList<Thread>();
+            var threads = new ArrayList<Thread>();
             for (int s = 0; s < senders; s++) {
                 long base = (long) s * perSender;
                 threads.add(Thread.ofPlatform().start(() -> {

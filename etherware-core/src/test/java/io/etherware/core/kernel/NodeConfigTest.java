@@ -4,6 +4,7 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
+import io.etherware.core.message.Profile;
 import io.etherware.core.time.NodeClock;
 import java.time.Duration;
 import org.junit.jupiter.api.Test;
@@ -56,9 +57,9 @@ class NodeConfigTest {
     @Test
     void shouldRefuseADuplicateProfileWhenAddingAComponent() {
         try (var node = EtherwareNode.builder().nodeId("dup").build()) {
-            node.add(io.etherware.core.message.Profile.of("x"), () -> (m, c) -> { });
+            node.add(Profile.of("x"), () -> (m, c) -> { });
             var error = assertThrows(IllegalArgumentException.class,
-                    () -> node.add(io.etherware.core.message.Profile.of("x"), () -> (m, c) -> { }));
+                    () -> node.add(Profile.of("x"), () -> (m, c) -> { }));
             assertTrue(error.getMessage().contains("profile 'x' is already registered"), error.getMessage());
         }
     }

@@ -11,6 +11,7 @@ import io.etherware.core.component.Component;
 import io.etherware.core.component.ComponentContext;
 import io.etherware.core.component.RequestFailedException;
 import io.etherware.core.component.RequestFailedException.Reason;
+import io.etherware.core.kernel.internal.DispatcherMark;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
 import io.etherware.core.message.QoS;
@@ -74,7 +75,7 @@ class RequestReplyTest {
                         replies++;
                         // The continuation runs in the client's own turn, on a dispatcher.
                         result.complete(reply.contentsAs(Num.class).value() + "/" + replies + "/"
-                                + io.etherware.core.kernel.internal.DispatcherMark.isDispatcherThread());
+                                + DispatcherMark.isDispatcherThread());
                     });
                     inside.set(false);
                 }

@@ -8,6 +8,7 @@ import io.etherware.core.message.Profile;
 import io.etherware.core.scheduler.Job;
 import io.etherware.core.testing.ManualScheduler;
 import io.etherware.core.testing.Num;
+import java.time.Duration;
 import java.util.List;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.CountDownLatch;
@@ -32,7 +33,7 @@ class ReservationTest {
         var entered = new CountDownLatch(1);
         var unblock = new CountDownLatch(1);
         try (var node = EtherwareNode.builder().nodeId("race").scheduler(() -> scheduler)
-                .drainTimeout(java.time.Duration.ZERO).build()) {
+                .drainTimeout(Duration.ZERO).build()) {
             node.add(TARGET, () -> (message, context) -> {
                 long value = message.contentsAs(Num.class).value();
                 if (value == 100) {
@@ -87,7 +88,7 @@ class ReservationTest {
         var entered = new CountDownLatch(1);
         var unblock = new CountDownLatch(1);
         try (var node = EtherwareNode.builder().nodeId("urgency").scheduler(() -> scheduler)
-                .drainTimeout(java.time.Duration.ZERO).build()) {
+                .drainTimeout(Duration.ZERO).build()) {
             node.add(TARGET, () -> (message, context) -> {
                 long value = message.contentsAs(Num.class).value();
                 if (value == 0) {

@@ -14,6 +14,8 @@ import java.util.List;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicInteger;
+import java.util.stream.LongStream;
 import org.junit.jupiter.api.Test;
 
 class FifoSchedulerTest {
@@ -40,7 +42,7 @@ class FifoSchedulerTest {
             assertTrue(scheduler.submit(job(i)));
         }
         assertTrue(done.await(30, TimeUnit.SECONDS));
-        assertEquals(java.util.stream.LongStream.range(0, 1000).boxed().toList(), order);
+        assertEquals(LongStream.range(0, 1000).boxed().toList(), order);
         assertEquals(1, threads.stream().distinct().count());
         assertEquals("fifo-test", threads.getFirst());
         assertEquals(List.of(), scheduler.shutdown(TimeUnit.SECONDS.toNanos(1)));
@@ -51,7 +53,7 @@ class FifoSchedulerTest {
         var scheduler = new FifoScheduler();
         var entered = new CountDownLatch(1);
         var release = new CountDownLatch(1);
-        var ran = new java.util.concurrent.atomic.AtomicInteger();
+        var ran = new AtomicInteger();
         scheduler.start((job, nowNs) -> {
             ran.incrementAndGet();
             entered.countDown();
