@@ -16,6 +16,8 @@ module io.etherware.core {
     requires org.codehaus.stax2;
 
     exports io.etherware.core.codec;
+    exports io.etherware.core.component;
+    exports io.etherware.core.kernel;
     exports io.etherware.core.message;
     exports io.etherware.core.scheduler;
     exports io.etherware.core.time;

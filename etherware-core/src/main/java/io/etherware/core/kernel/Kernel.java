@@ -1,0 +1,107 @@
+package io.etherware.core.kernel;
+
+import io.etherware.core.component.Component;
+import io.etherware.core.component.ComponentState;
+import io.etherware.core.message.Message;
+import io.etherware.core.message.MessageId;
+import io.etherware.core.message.Profile;
+import io.etherware.core.time.NodeClock;
+import java.util.concurrent.CompletableFuture;
+import java.util.function.Supplier;
+
+/**
+ * The message-delivery and management mechanism of a node (paper Section III-A, Fig. 2), as the
+ * node's services see it: a transport injects incoming messages with {@link #send} and registers
+ * routes in the {@link #registry()}; upgrade and migration use the hold / release / swap hooks.
+ *
+ * <p>Delivery: {@link #send} resolves the profile, wraps the message in a job and hands it to the
+ * scheduler (or to a {@link RemoteRoute}). A component handles one message at a time on whatever
+ * dispatcher the scheduler chose; a message for a busy component waits with the component, so a
+ * message waits at most for the handling in progress on its component plus the more urgent
+ * messages already waiting for it, and a dispatcher never blocks on another's work.
+ *
+ * <p>Thread-safety: every method may be called from any thread. Methods returning a future do not
+ * block; their futures may complete on a dispatcher thread.
+ */
+public interface Kernel {
+
+    /** This node's id. */
+    String nodeId();
+
+    /**
+     * The node's own profile, {@code etherware.node[id=<nodeId>]}: the sender of requests made
+     * from outside any component, so replies find their way back across nodes.
+     */
+    Profile profile();
+
+    /** The node's clock. */
+    NodeClock clock();
+
+    /** The profile registry. */
+    ProfileRegistry registry();
+
+    /** A new message id of this node. */
+    MessageId newMessageId();
+
+    /**
+     * Delivers {@code message} to the component or route its profile resolves to. Never drops a
+     * message silently: if the profile does not resolve, the sender receives an
+     * {@link Undeliverable} notice (a request's future fails), and a counter moves. A reply to a
+     * pending request of this node completes that request instead.
+     *
+     * @throws IllegalStateException if the node was never started
+     */
+    void send(Message message);
+
+    /**
+     * Sends {@code request} and returns its reply. If the request has no sender, the node's
+     * {@link #profile()} is used. The future completes on a kernel thread (use the
+     * {@code ...Async} continuations for long work) and fails with
+     * {@link io.etherware.core.component.RequestFailedException}.
+     */
+    CompletableFuture<Message> request(Message request, long timeoutNs);
+
+    /**
+     * Makes the kernel keep the messages for a local component instead of dispatching them, from
+     * the component's next message boundary on. The future completes once the component is at
+     * that boundary and will not run until {@link #release}. Holding a held component completes
+     * at once (holds do not nest).
+     *
+     * @throws ProfileResolutionException if no local component has exactly this profile
+     */
+    CompletableFuture<Void> holdAsync(Profile profile);
+
+    /**
+     * Ends a hold: the messages kept meanwhile are delivered, in order, exactly once. Does
+     * nothing for a component that is not held.
+     */
+    void release(Profile profile);
+
+    /**
+     * Replaces a local component's logic at a message boundary: snapshot of the old logic, a new
+     * instance from {@code factory}, {@code restore(state)}, {@code onStart}, swap, then the old
+     * logic's {@code onStop}. If {@code restore} or {@code onStart} throws, the old logic stays
+     * and the future fails with that error. The factory is also used for later restarts.
+     */
+    CompletableFuture<Void> swapAsync(Profile profile, Supplier<? extends Component> factory);
+
+    /**
+     * The state of a local component at its next message boundary ({@link Component#snapshot()},
+     * possibly null). On a held component it is the state that a migration ships.
+     */
+    CompletableFuture<ComponentState> snapshotAsync(Profile profile);
+
+    /**
+     * Moves a local component's profile to another node, at the component's next message
+     * boundary: stops the component, points the profile at {@code route} and forwards the
+     * messages kept by a {@link #holdAsync hold} through it, in order, ahead of any message sent
+     * after the switch. Jobs already queued at a dispatcher for the old component follow when
+     * they are taken, so a migration should hold first and let the queues drain.
+     *
+     * @param profile the exact profile of a local component
+     */
+    CompletableFuture<Void> relocateAsync(Profile profile, RemoteRoute route);
+
+    /** The node's counters now. */
+    NodeStats stats();
+}

@@ -1,0 +1,112 @@
+package io.etherware.core.kernel;
+
+import io.etherware.core.message.Profile;
+import io.etherware.core.scheduler.FifoScheduler;
+import io.etherware.core.scheduler.Scheduler;
+import io.etherware.core.time.NodeClock;
+import java.time.Duration;
+import java.util.Objects;
+import java.util.function.Supplier;
+
+/**
+ * The configuration of an {@link EtherwareNode}, validated once when it is built. Every field has
+ * a default that works on a laptop without privileges; they are all listed in {@link Builder}.
+ *
+ * <p>Immutable. The scheduler is given as a factory because a scheduler runs one node once.
+ *
+ * @param nodeId                  this node's id: part of every message id, unique in the system
+ * @param scheduler               makes the node's scheduler
+ * @param clock                   the node's clock
+ * @param supervision             the restart policy of components added without their own
+ * @param escalation              what the node does when a component exceeds its restart intensity
+ * @param defaultRequestTimeoutNs timeout of requests made without one; &gt; 0
+ * @param drainTimeoutNs          how long {@code close()} lets queued messages be delivered before
+ *                                it discards (and counts) the rest; &gt;= 0
+ */
+public record NodeConfig(String nodeId, Supplier<? extends Scheduler> scheduler, NodeClock clock,
+                         SupervisionPolicy supervision, Escalation escalation, long defaultRequestTimeoutNs,
+                         long drainTimeoutNs) {
+
+    public NodeConfig {
+        if (nodeId == null || !Profile.isName(nodeId)) {
+            throw new IllegalArgumentException("nodeId=" + (nodeId == null ? "null" : "'" + nodeId + "'")
+                    + " must match " + Profile.NAME_PATTERN + ", e.g. nodeId(\"plant-1\")");
+        }
+        Objects.requireNonNull(scheduler, "scheduler=null: give a factory, e.g. scheduler(FifoScheduler::new)");
+        Objects.requireNonNull(clock, "clock=null: use NodeClock.system() or leave the default");
+        Objects.requireNonNull(supervision, "supervision=null: use SupervisionPolicy.DEFAULT or leave the default");
+        Objects.requireNonNull(escalation, "escalation=null: use Escalation.RESET_ALL or STOP_NODE");
+        if (defaultRequestTimeoutNs <= 0) {
+            throw new IllegalArgumentException("defaultRequestTimeoutNs=" + defaultRequestTimeoutNs
+                    + " must be > 0, e.g. defaultRequestTimeout(Duration.ofSeconds(1))");
+        }
+        if (drainTimeoutNs < 0) {
+            throw new IllegalArgumentException("drainTimeoutNs=" + drainTimeoutNs
+                    + " must be >= 0 (0 discards whatever is queued at close)");
+        }
+    }
+
+    /** A builder holding the defaults. */
+    public static Builder builder() {
+        return new Builder();
+    }
+
+    /**
+     * Builds a {@link NodeConfig}. Defaults: node id {@code node}, {@link FifoScheduler}, the
+     * system clock, {@link SupervisionPolicy#DEFAULT}, {@link Escalation#RESET_ALL}, request
+     * timeout 1 s, drain timeout 1 s. Not thread-safe; use it on one thread.
+     */
+    public static final class Builder {
+        private String nodeId = "node";
+        private Supplier<? extends Scheduler> scheduler = FifoScheduler::new;
+        private NodeClock clock = NodeClock.system();
+        private SupervisionPolicy supervision = SupervisionPolicy.DEFAULT;
+        private Escalation escalation = Escalation.RESET_ALL;
+        private long defaultRequestTimeoutNs = Duration.ofSeconds(1).toNanos();
+        private long drainTimeoutNs = Duration.ofSeconds(1).toNanos();
+
+        Builder() {
+        }
+
+        public Builder nodeId(String value) {
+            nodeId = value;
+            return this;
+        }
+
+        public Builder scheduler(Supplier<? extends Scheduler> value) {
+            scheduler = value;
+            return this;
+        }
+
+        public Builder clock(NodeClock value) {
+            clock = value;
+            return this;
+        }
+
+        public Builder supervision(SupervisionPolicy value) {
+            supervision = value;
+            return this;
+        }
+
+        public Builder escalation(Escalation value) {
+            escalation = value;
+            return this;
+        }
+
+        public Builder defaultRequestTimeout(Duration value) {
+            defaultRequestTimeoutNs = SupervisionPolicy.toNs("defaultRequestTimeout", value);
+            return this;
+        }
+
+        public Builder drainTimeout(Duration value) {
+            drainTimeoutNs = SupervisionPolicy.toNs("drainTimeout", value);
+            return this;
+        }
+
+        /** The validated configuration. */
+        public NodeConfig build() {
+            return new NodeConfig(nodeId, scheduler, clock, supervision, escalation, defaultRequestTimeoutNs,
+                    drainTimeoutNs);
+        }
+    }
+}

@@ -1,0 +1,562 @@
+package io.etherware.core.kernel.internal;
+
+import io.etherware.core.component.Component;
+import io.etherware.core.component.ComponentState;
+import io.etherware.core.component.RequestFailedException;
+import io.etherware.core.component.RequestFailedException.Reason;
+import io.etherware.core.component.Shell;
+import io.etherware.core.kernel.Endpoint;
+import io.etherware.core.kernel.Kernel;
+import io.etherware.core.kernel.NodeConfig;
+import io.etherware.core.kernel.NodeStats;
+import io.etherware.core.kernel.ProfileRegistry;
+import io.etherware.core.kernel.RemoteRoute;
+import io.etherware.core.kernel.RequestFailed;
+import io.etherware.core.kernel.SupervisionPolicy;
+import io.etherware.core.kernel.Undeliverable;
+import io.etherware.core.message.Contents;
+import io.etherware.core.message.ContentsTypes;
+import io.etherware.core.message.Message;
+import io.etherware.core.message.MessageId;
+import io.etherware.core.message.Profile;
+import io.etherware.core.message.Tick;
+import io.etherware.core.scheduler.Job;
+import io.etherware.core.scheduler.JobRunner;
+import io.etherware.core.scheduler.Scheduler;
+import io.etherware.core.time.NodeClock;
+import java.util.ArrayList;
+import java.util.Comparator;
+import java.util.List;
+import java.util.Objects;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.CopyOnWriteArrayList;
+import java.util.concurrent.ExecutionException;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.TimeoutException;
+import java.util.concurrent.atomic.AtomicLong;
+import java.util.concurrent.atomic.LongAdder;
+import java.util.function.Supplier;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+/**
+ * The kernel of a node (paper Section III-A): resolves profiles, wraps messages into jobs for the
+ * scheduler, runs jobs through the component gates ({@link LocalShell}), correlates requests,
+ * tells senders about undeliverable messages and supervises failures.
+ *
+ * <p>The per-message path ({@link #send}, {@link #run}) takes no lock when the receiver is free,
+ * logs nothing and allocates only the job (the sender allocates the message).
+ *
+ * <p>Thread-safety: every method may be called from any thread; lifecycle changes are serialized.
+ */
+public final class KernelCore implements Kernel, JobRunner {
+
+    private static final Logger log = LoggerFactory.getLogger(Kernel.class);
+    /** Extra wait of a blocking request beyond its timeout, for the timer thread to fire. */
+    private static final long BLOCKING_GRACE_NS = TimeUnit.SECONDS.toNanos(5);
+
+    static {
+        registerContents(ContentsTypes.shared());
+    }
+
+    private enum NodeState { CREATED, RUNNING, CLOSING, CLOSED }
+
+    private final NodeConfig config;
+    private final String nodeId;
+    private final NodeClock clock;
+    private final Profile nodeProfile;
+    private final Scheduler scheduler;
+    private final Comparator<Job> urgency;
+    private final ProfileTable registry = new ProfileTable();
+    private final RequestTable requests;
+    private final AtomicLong messageSequence = new AtomicLong();
+    private final AtomicLong jobSequence = new AtomicLong();
+    /** Registered components in registration order. */
+    private final List<LocalShell> shells = new CopyOnWriteArrayList<>();
+    /** Every component ever added, for the counters. */
+    private final List<LocalShell> everAdded = new CopyOnWriteArrayList<>();
+    private final LongAdder undeliverable = new LongAdder();
+    private final LongAdder discarded = new LongAdder();
+    private final LongAdder escalations = new LongAdder();
+    private final LongAdder resets = new LongAdder();
+    private final Object lifecycleLock = new Object();
+    private final CompletableFuture<Void> closed = new CompletableFuture<>();
+    private volatile NodeState state = NodeState.CREATED;
+
+    public KernelCore(NodeConfig config) {
+        this.config = Objects.requireNonNull(config, "config");
+        this.nodeId = config.nodeId();
+        this.clock = config.clock();
+        this.nodeProfile = Profile.of("etherware.node", "id", nodeId);
+        this.scheduler = Objects.requireNonNull(config.scheduler().get(), "the scheduler factory returned null");
+        // Ties in arrival order, whatever the scheduler's comparator does with them.
+        this.urgency = scheduler.urgency().thenComparingLong(Job::sequence);
+        this.requests = new RequestTable(nodeId, this::deliverOutcome);
+    }
+
+    /** Registers the kernel's notices ({@code undeliverable}, {@code request-failed}) in {@code types}. */
+    public static void registerContents(ContentsTypes types) {
+        types.register("undeliverable", Undeliverable.class);
+        types.register("request-failed", RequestFailed.class);
+    }
+
+    // ---------------------------------------------------------------- Kernel
+
+    @Override
+    public String nodeId() {
+        return nodeId;
+    }
+
+    @Override
+    public Profile profile() {
+        return nodeProfile;
+    }
+
+    @Override
+    public NodeClock clock() {
+        return clock;
+    }
+
+    @Override
+    public ProfileRegistry registry() {
+        return registry;
+    }
+
+    public NodeConfig config() {
+        return config;
+    }
+
+    public Scheduler scheduler() {
+        return scheduler;
+    }
+
+    Comparator<Job> urgency() {
+        return urgency;
+    }
+
+    @Override
+    public MessageId newMessageId() {
+        return new MessageId(nodeId, messageSequence.getAndIncrement());
+    }
+
+    @Override
+    public void send(Message message) {
+        if (state == NodeState.CREATED) {
+            throw new IllegalStateException("node '" + nodeId + "' is not started: call start() before sending");
+        }
+        MessageId correlationId = message.correlationId();
+        if (correlationId != null && nodeId.equals(correlationId.nodeId()) && requests.interceptReply(message)) {
+            return;
+        }
+        Endpoint endpoint = registry.lookup(message.profile());
+        if (endpoint instanceof Endpoint.Local local) {
+            enqueue(message, (LocalShell) local.shell());
+        } else if (endpoint instanceof Endpoint.Remote remote) {
+            deliverRemote(message, remote.route());
+        } else {
+            undeliverable(message, registry.explainMiss(message.profile()));
+        }
+    }
+
+    private void enqueue(Message message, LocalShell shell) {
+        long nowNs = clock.nanoTime();
+        long releaseNs = nowNs;
+        // A local Tick is released at its scheduled time, so start latency counts from there.
+        if (message.contents() instanceof Tick tick && tick.releaseNs() <= nowNs
+                && nodeId.equals(message.messageId().nodeId())) {
+            releaseNs = tick.releaseNs();
+        }
+        Job job = new Job(message, shell.name(), shell, jobSequence.getAndIncrement(), releaseNs);
+        if (!scheduler.submit(job)) {
+            discard(job);
+        }
+    }
+
+    private void deliverRemote(Message message, RemoteRoute route) {
+        try {
+            route.deliver(message);
+        } catch (RuntimeException e) {
+            undeliverable(message, "the route to '" + message.profile() + "' refused it: " + e);
+        }
+    }
+
+    @Override
+    public CompletableFuture<Message> request(Message request, long timeoutNs) {
+        Message withSender = request.hasSender() ? request
+                : new Message(request.profile(), nodeProfile, request.timeStamp(), request.qos(), request.contents(),
+                        request.messageId(), request.correlationId());
+        return request(withSender, null, timeoutNs);
+    }
+
+    /**
+     * Sends a request; the outcome is delivered as a job of {@code requester} (null: completed on
+     * the thread that has it).
+     */
+    CompletableFuture<Message> request(Message request, LocalShell requester, long timeoutNs) {
+        if (timeoutNs <= 0) {
+            throw new IllegalArgumentException("timeoutNs=" + timeoutNs + " must be > 0");
+        }
+        if (request.sender() == null) {
+            throw new IllegalArgumentException("request " + request.messageId() + " needs a sender for its reply");
+        }
+        PendingRequest entry = requests.register(request, requester, timeoutNs);
+        try {
+            send(request);
+        } catch (RuntimeException e) {
+            requests.cancel(entry);
+            throw e;
+        }
+        return entry.future;
+    }
+
+    /** A request that waits for its reply; refuses dispatcher threads. */
+    public Message requestBlocking(Message request, long timeoutNs) {
+        DispatcherMark.requireNotDispatcher("requestBlocking",
+                "Use request(...) and continue in the future's callback (thenAccept).");
+        CompletableFuture<Message> reply = request(request, timeoutNs);
+        MessageId id = request.messageId();
+        try {
+            return reply.get(timeoutNs + BLOCKING_GRACE_NS, TimeUnit.NANOSECONDS);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            throw new RequestFailedException(Reason.INTERRUPTED, id, "interrupted while waiting for the reply to " + id, e);
+        } catch (ExecutionException e) {
+            if (e.getCause() instanceof RequestFailedException failure) {
+                throw new RequestFailedException(failure.reason(), id, failure.getMessage(), failure);
+            }
+            throw new IllegalStateException("request " + id + " failed", e.getCause());
+        } catch (TimeoutException e) {
+            throw new RequestFailedException(Reason.TIMEOUT, id, "no outcome for request " + id + " (timer stalled)", e);
+        }
+    }
+
+    /** Hands a request's outcome to its requester. */
+    private void deliverOutcome(PendingRequest entry) {
+        LocalShell requester = entry.requester;
+        if (requester == null) {
+            entry.settle();
+            return;
+        }
+        Message carrier = entry.outcomeMessage();
+        Job job = new Job(carrier, requester.name(), entry, jobSequence.getAndIncrement(), clock.nanoTime());
+        if (!scheduler.submit(job)) {
+            discard(job);
+        }
+    }
+
+    @Override
+    public CompletableFuture<Void> holdAsync(Profile profile) {
+        LocalShell shell = localShell(profile);
+        var held = new CompletableFuture<Void>();
+        shell.atBoundary(() -> {
+            shell.hold();
+            held.complete(null);
+        });
+        return held;
+    }
+
+    @Override
+    public void release(Profile profile) {
+        localShell(profile).release();
+    }
+
+    @Override
+    public CompletableFuture<Void> swapAsync(Profile profile, Supplier<? extends Component> factory) {
+        Objects.requireNonNull(factory, "factory");
+        LocalShell shell = localShell(profile);
+        var swapped = new CompletableFuture<Void>();
+        shell.atBoundary(() -> shell.swap(factory, swapped));
+        return swapped;
+    }
+
+    private LocalShell localShell(Profile profile) {
+        Endpoint endpoint = registry.resolve(Objects.requireNonNull(profile, "profile"));
+        if (endpoint instanceof Endpoint.Local local) {
+            return (LocalShell) local.shell();
+        }
+        throw new IllegalArgumentException("profile '" + profile + "' is hosted on another node; manage it there");
+    }
+
+    @Override
+    public NodeStats stats() {
+        long handled = 0;
+        long failed = 0;
+        long restarts = 0;
+        for (LocalShell shell : everAdded) {
+            handled += shell.handledCount();
+            failed += shell.failedCount();
+            restarts += shell.restartCount();
+        }
+        return new NodeStats(nodeId, jobSequence.get(), handled, failed, restarts, undeliverable.sum(), discarded.sum(),
+                requests.timeoutCount(), requests.lateReplyCount(), escalations.sum(), resets.sum());
+    }
+
+    // ---------------------------------------------------------------- JobRunner
+
+    @Override
+    public boolean run(Job job, long nowNs) {
+        DispatcherMark.markCurrentThread();
+        Object target = job.target();
+        LocalShell shell = target instanceof LocalShell local ? local : ((PendingRequest) target).requester;
+        if (!job.isReserved() && !shell.acquireOrPark(job)) {
+            return false;
+        }
+        shell.execute(job, nowNs);
+        return true;
+    }
+
+    boolean resubmit(Job job) {
+        return scheduler.submit(job);
+    }
+
+    /** Counts a job the node will not run because it is closing; settles request outcomes. */
+    void discard(Job job) {
+        discarded.increment();
+        if (job.target() instanceof PendingRequest entry) {
+            entry.settle();
+        }
+    }
+
+    // ---------------------------------------------------------------- undeliverable and failures
+
+    /** A message reached a component that does not run (owner thread of {@code shell}). */
+    void notRunning(LocalShell shell, Message message) {
+        NodeState now = state;
+        if (now == NodeState.CLOSING || now == NodeState.CLOSED) {
+            discarded.increment();
+        } else if (shell.isRemoved()) {
+            send(message); // re-resolve: the profile may live elsewhere now (migration)
+        } else {
+            undeliverable(message, "component '" + shell.name() + "' is " + shell.state());
+        }
+    }
+
+    /** Counts an undeliverable message and tells its sender, if there is one to tell. */
+    void undeliverable(Message message, String reason) {
+        undeliverable.increment();
+        Contents contents = message.contents();
+        if (message.sender() == null || contents instanceof Undeliverable || contents instanceof RequestFailed) {
+            // Nobody to tell, or a notice about a notice (which could loop): the log is the notice.
+            log.warn("node {}: message {} to '{}' is undeliverable: {}", nodeId, message.messageId(), message.profile(),
+                    reason);
+            return;
+        }
+        log.debug("node {}: message {} to '{}' is undeliverable: {}", nodeId, message.messageId(), message.profile(),
+                reason);
+        send(new Message(message.sender(), nodeProfile, clock.epochNanos(), message.qos(),
+                new Undeliverable(message.profile().toString(), message.messageId().toString(), reason),
+                newMessageId(), message.messageId()));
+    }
+
+    /** Logs a component's failure and, if the message was a request, fails it (owner thread). */
+    void reportFailure(LocalShell shell, Message message, Throwable failure, long failures) {
+        log.warn("node {}: component '{}' failed handling message {} from '{}' (failure {})", nodeId, shell.name(),
+                message.messageId(), message.sender(), failures, failure);
+        Contents contents = message.contents();
+        if (message.sender() == null || contents instanceof Undeliverable || contents instanceof RequestFailed) {
+            return;
+        }
+        // A local request is known; a message from another node may be a request there, whose
+        // kernel drops the notice if it is not.
+        if (requests.isPending(message.messageId()) || !nodeId.equals(message.messageId().nodeId())) {
+            send(new Message(message.sender(), shell.profile(), clock.epochNanos(), message.qos(),
+                    new RequestFailed(message.messageId().toString(), shell.name(), failure.toString()),
+                    newMessageId(), message.messageId()));
+        }
+    }
+
+    /** A component exceeded its restart intensity: apply the node's policy (owner thread). */
+    void escalate(LocalShell shell, Throwable failure) {
+        escalations.increment();
+        switch (config.escalation()) {
+            case RESET_ALL -> {
+                resets.increment();
+                log.error("node {}: escalation from '{}' ({}): resetting all {} components", nodeId, shell.name(),
+                        failure.toString(), shells.size());
+                for (LocalShell each : shells) {
+                    each.atBoundary(each::reset);
+                }
+            }
+            case STOP_NODE -> {
+                log.error("node {}: escalation from '{}' ({}): stopping the node", nodeId, shell.name(),
+                        failure.toString());
+                closeAsync();
+            }
+        }
+    }
+
+    // ---------------------------------------------------------------- lifecycle
+
+    /** Adds a component; starts it at once if the node runs. */
+    public Shell add(Profile profile, Supplier<? extends Component> factory, SupervisionPolicy policy) {
+        LocalShell shell;
+        boolean startNow;
+        synchronized (lifecycleLock) {
+            if (state == NodeState.CLOSING || state == NodeState.CLOSED) {
+                throw new IllegalStateException("node '" + nodeId + "' is closed; cannot add '" + profile + "'");
+            }
+            shell = new LocalShell(this, profile, factory, policy);
+            registry.register(profile, shell.endpoint());
+            shells.add(shell);
+            everAdded.add(shell);
+            startNow = state == NodeState.RUNNING;
+        }
+        if (startNow) {
+            shell.start();
+        }
+        return shell;
+    }
+
+    /**
+     * Removes a component: unregisters it at once (new messages for the profile are resolved
+     * anew), then stops it at its next message boundary. Messages that waited for it are
+     * resolved anew as well, so they follow the profile if it is registered elsewhere.
+     */
+    public CompletableFuture<Void> remove(Profile profile) {
+        Objects.requireNonNull(profile, "profile");
+        LocalShell shell;
+        synchronized (lifecycleLock) {
+            Endpoint endpoint = registry.lookup(profile);
+            if (!(endpoint instanceof Endpoint.Local local) || !local.shell().profile().equals(profile)) {
+                throw new IllegalArgumentException("no local component has profile '" + profile + "'");
+            }
+            shell = (LocalShell) local.shell();
+            registry.unregister(profile, endpoint);
+            shells.remove(shell);
+        }
+        if (shell.cancelIfUnstarted()) {
+            return CompletableFuture.completedFuture(null);
+        }
+        var stopped = new CompletableFuture<Void>();
+        shell.atBoundary(() -> {
+            shell.remove();
+            stopped.complete(null);
+        });
+        return stopped;
+    }
+
+    @Override
+    public CompletableFuture<Void> relocateAsync(Profile profile, RemoteRoute route) {
+        Objects.requireNonNull(route, "route");
+        LocalShell shell = localShell(profile);
+        if (!shell.profile().equals(profile)) {
+            throw new IllegalArgumentException("relocate needs the exact profile '" + shell.profile() + "', not a query");
+        }
+        var relocated = new CompletableFuture<Void>();
+        shell.atBoundary(() -> {
+            try {
+                shell.relocate(registry, new Endpoint.Remote(route));
+                shells.remove(shell);
+                relocated.complete(null);
+            } catch (RuntimeException e) {
+                relocated.completeExceptionally(e);
+            }
+        });
+        return relocated;
+    }
+
+    @Override
+    public CompletableFuture<ComponentState> snapshotAsync(Profile profile) {
+        LocalShell shell = localShell(profile);
+        var state = new CompletableFuture<ComponentState>();
+        shell.atBoundary(() -> {
+            try {
+                state.complete(shell.snapshotNow());
+            } catch (Throwable e) {
+                state.completeExceptionally(e);
+            }
+        });
+        return state;
+    }
+
+    /** Hands a message to a route; a refusal makes it undeliverable. */
+    void forward(Message message, RemoteRoute route) {
+        deliverRemote(message, route);
+    }
+
+    public Shell shell(Profile profile) {
+        return localShell(profile);
+    }
+
+    public List<Shell> shells() {
+        return List.copyOf(shells);
+    }
+
+    /** Starts the scheduler, then the components in registration order. */
+    public void start() {
+        synchronized (lifecycleLock) {
+            if (state != NodeState.CREATED) {
+                throw new IllegalStateException("node '" + nodeId + "' is " + state + "; start() works once");
+            }
+            scheduler.start(this, clock);
+            state = NodeState.RUNNING;
+        }
+        for (LocalShell shell : shells) {
+            shell.start();
+        }
+        log.info("node {} started: scheduler {}, {} components", nodeId, scheduler.name(), shells.size());
+    }
+
+    public boolean isRunning() {
+        return state == NodeState.RUNNING;
+    }
+
+    public boolean isClosed() {
+        return state == NodeState.CLOSED;
+    }
+
+    /** Completes when the node has closed. */
+    public CompletableFuture<Void> closedFuture() {
+        return closed;
+    }
+
+    /** Closes on a new thread; usable from dispatcher threads. */
+    public CompletableFuture<Void> closeAsync() {
+        if (state != NodeState.CLOSING && state != NodeState.CLOSED) {
+            Thread.ofPlatform().name("etherware-close-" + nodeId).start(this::close);
+        }
+        return closed;
+    }
+
+    /**
+     * Drains the scheduler for at most the drain timeout, counts what remains as discarded,
+     * stops the components in reverse registration order and fails the waiting requests.
+     */
+    public void close() {
+        boolean wasStarted;
+        boolean closing;
+        synchronized (lifecycleLock) {
+            closing = state == NodeState.CLOSING || state == NodeState.CLOSED;
+            if (!closing) {
+                DispatcherMark.requireNotDispatcher("close()", "Use closeAsync().");
+            }
+            wasStarted = state == NodeState.RUNNING;
+            state = closing ? state : NodeState.CLOSING;
+        }
+        if (closing) {
+            if (!DispatcherMark.isDispatcherThread()) {
+                closed.join(); // another thread closes; return once it is done
+            }
+            return;
+        }
+        try {
+            if (wasStarted) {
+                for (Job job : scheduler.shutdown(config.drainTimeoutNs())) {
+                    discard(job);
+                }
+            }
+            List<LocalShell> reverse = new ArrayList<>(shells).reversed();
+            for (LocalShell shell : reverse) {
+                for (Job job : shell.closeGate()) {
+                    discard(job);
+                }
+                shell.stopForClose();
+            }
+            requests.close();
+        } finally {
+            state = NodeState.CLOSED;
+            closed.complete(null);
+        }
+        log.info("node {} closed: {}", nodeId, stats());
+    }
+}

@@ -1,0 +1,443 @@
+package io.etherware.core.kernel.internal;
+
+import io.etherware.core.component.Component;
+import io.etherware.core.component.ComponentState;
+import io.etherware.core.component.Shell;
+import io.etherware.core.kernel.Endpoint;
+import io.etherware.core.kernel.SupervisionPolicy;
+import io.etherware.core.message.Message;
+import io.etherware.core.message.Profile;
+import io.etherware.core.scheduler.Job;
+import java.lang.invoke.MethodHandles;
+import java.lang.invoke.VarHandle;
+import java.util.List;
+import java.util.Objects;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.atomic.AtomicBoolean;
+import java.util.function.Supplier;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+/**
+ * The {@link Shell} of a component on this node: its {@link ComponentGate} (one job at a time,
+ * across all dispatchers), lifecycle, counters, logic reference, and the supervision steps that
+ * run on the owning thread: restart, reset, swap, stop.
+ *
+ * <p>A message waits for its component at most for the handling in progress plus the more urgent
+ * messages already waiting for it (see {@link ComponentGate}).
+ *
+ * <p>Thread-safety: fields marked "owner" are touched only by the thread that owns the gate,
+ * whose entry and exit are full fences, so they need no further synchronization. Counters are
+ * written by the owner with release stores and read with acquire loads (plain moves on x86), so
+ * a reader who sees a failure counted also sees the restart that followed it.
+ */
+public final class LocalShell implements Shell {
+
+    private static final Logger log = LoggerFactory.getLogger("io.etherware.core.kernel.Supervision");
+
+    private static final VarHandle HANDLED;
+    private static final VarHandle FAILED;
+    private static final VarHandle RESTARTS;
+    private static final VarHandle LAST_HANDLING_NS;
+
+    static {
+        try {
+            var lookup = MethodHandles.lookup();
+            HANDLED = lookup.findVarHandle(LocalShell.class, "handled", long.class);
+            FAILED = lookup.findVarHandle(LocalShell.class, "failed", long.class);
+            RESTARTS = lookup.findVarHandle(LocalShell.class, "restarts", long.class);
+            LAST_HANDLING_NS = lookup.findVarHandle(LocalShell.class, "lastHandlingNs", long.class);
+        } catch (ReflectiveOperationException e) {
+            throw new ExceptionInInitializerError(e);
+        }
+    }
+
+    private final KernelCore kernel;
+    private final Profile profile;
+    private final String name;
+    private final SupervisionPolicy policy;
+    private final boolean snapshotting;
+    private final Endpoint.Local endpoint;
+    private final ShellContext context;
+    private final ComponentGate gate;
+    private final AtomicBoolean started = new AtomicBoolean();
+
+    private volatile Supplier<? extends Component> factory;
+    private volatile Component logic;
+    private volatile State lifecycle = State.CREATED;
+    private volatile boolean removed;
+
+    @SuppressWarnings("unused") // through HANDLED
+    private long handled;
+    @SuppressWarnings("unused") // through FAILED
+    private long failed;
+    @SuppressWarnings("unused") // through RESTARTS
+    private long restarts;
+    @SuppressWarnings("unused") // through LAST_HANDLING_NS
+    private long lastHandlingNs;
+
+    private ComponentState lastSnapshot; // owner
+    private final long[] restartTimesNs; // owner: ring of the latest restarts
+    private int restartHead; // owner
+    private int restartsInRing; // owner
+
+    LocalShell(KernelCore kernel, Profile profile, Supplier<? extends Component> factory, SupervisionPolicy policy) {
+        this.kernel = kernel;
+        this.profile = Objects.requireNonNull(profile, "profile");
+        this.name = profile.toString();
+        this.factory = Objects.requireNonNull(factory, "factory");
+        this.policy = Objects.requireNonNull(policy, "policy");
+        this.snapshotting = policy.restart() == SupervisionPolicy.Restart.FROM_SNAPSHOT;
+        this.restartTimesNs = new long[policy.restart() == SupervisionPolicy.Restart.STOP ? 0 : policy.maxRestarts()];
+        this.endpoint = new Endpoint.Local(this);
+        this.gate = new ComponentGate(kernel, name);
+        this.context = new ShellContext(kernel, this);
+        this.logic = newLogic(factory);
+    }
+
+    // ---------------------------------------------------------------- Shell
+
+    @Override
+    public Profile profile() {
+        return profile;
+    }
+
+    @Override
+    public State state() {
+        return lifecycle;
+    }
+
+    @Override
+    public long handledCount() {
+        return (long) HANDLED.getAcquire(this);
+    }
+
+    @Override
+    public long failedCount() {
+        return (long) FAILED.getAcquire(this);
+    }
+
+    @Override
+    public long restartCount() {
+        return (long) RESTARTS.getAcquire(this);
+    }
+
+    @Override
+    public long lastHandlingNs() {
+        return (long) LAST_HANDLING_NS.getAcquire(this);
+    }
+
+    @Override
+    public Class<? extends Component> logicType() {
+        return logic.getClass();
+    }
+
+    @Override
+    public String toString() {
+        return "Shell[" + name + ", " + lifecycle + "]";
+    }
+
+    String name() {
+        return name;
+    }
+
+    Endpoint.Local endpoint() {
+        return endpoint;
+    }
+
+    boolean isRemoved() {
+        return removed;
+    }
+
+    // ---------------------------------------------------------------- the gate
+
+    /** See {@link ComponentGate#enterOrPark}. */
+    boolean acquireOrPark(Job job) {
+        return gate.enterOrPark(job);
+    }
+
+    /** Runs a job that owns the gate, then leaves the gate. */
+    void execute(Job job, long nowNs) {
+        try {
+            if (job.target() == this) {
+                handle(job.message(), nowNs);
+            } else {
+                ((PendingRequest) job.target()).settle();
+            }
+        } finally {
+            gate.leave();
+        }
+    }
+
+    /** See {@link ComponentGate#atBoundary}. */
+    void atBoundary(Runnable action) {
+        gate.atBoundary(action);
+    }
+
+    /** Boundary action: from now on, keep arrivals. */
+    void hold() {
+        gate.hold();
+    }
+
+    /** Ends a hold; the kept jobs are delivered in urgency order, exactly once. */
+    void release() {
+        gate.release();
+    }
+
+    /** See {@link ComponentGate#close()}. */
+    List<Job> closeGate() {
+        return gate.close();
+    }
+
+    // ---------------------------------------------------------------- lifecycle
+
+    /** Starts the component on the calling thread (once), then lets waiting messages in. */
+    void start() {
+        if (!started.compareAndSet(false, true)) {
+            return;
+        }
+        lifecycle = State.STARTING;
+        try {
+            Component current = logic;
+            current.onStart(context);
+            lastSnapshot = snapshotting ? current.snapshot() : null;
+            lifecycle = State.RUNNING;
+        } catch (Throwable failure) {
+            lifecycle = State.FAILED;
+            log.error("node {}: component '{}' failed to start; it is FAILED and messages to it are undeliverable",
+                    kernel.nodeId(), name, failure);
+        }
+        gate.leave();
+    }
+
+    /** For a component removed before it was started: marks it stopped; false if it had started. */
+    boolean cancelIfUnstarted() {
+        if (!started.compareAndSet(false, true)) {
+            return false;
+        }
+        removed = true;
+        lifecycle = State.STOPPED;
+        gate.leave();
+        return true;
+    }
+
+    /**
+     * Boundary action of removal: stops the component and ends a hold, so the kept messages, and
+     * any that still reach this shell, are resolved anew (they follow the profile elsewhere, or
+     * go back to their senders as undeliverable).
+     */
+    void remove() {
+        removed = true;
+        stopRunningLogic();
+        gate.endHoldOnLeave();
+    }
+
+    private void stopRunningLogic() {
+        if (lifecycle == State.RUNNING) {
+            lifecycle = State.STOPPING;
+            stopLogic(logic);
+        }
+        lifecycle = State.STOPPED;
+    }
+
+    /**
+     * Boundary action of a migration: stops the component, points its profile at {@code to} and
+     * forwards the kept messages there, in urgency order, before any message sent after the
+     * switch can reach the route through this node.
+     */
+    void relocate(ProfileTable registry, Endpoint.Remote to) {
+        removed = true;
+        stopRunningLogic();
+        // New arrivals park at the gate meanwhile, so the kept messages go out first.
+        gate.drainKept(() -> {
+            if (!registry.replace(profile, endpoint, to)) {
+                throw new IllegalStateException("profile '" + name + "' was re-registered during the relocation");
+            }
+        }, kept -> {
+            if (kept.target() == this) {
+                kernel.forward(kept.message(), to.route());
+            } else {
+                // The outcome of a request this (now stopped) instance made: it is local.
+                ((PendingRequest) kept.target()).settle();
+            }
+        });
+    }
+
+    /** Boundary action: the component's state now, or null. */
+    ComponentState snapshotNow() throws Exception {
+        return logic.snapshot();
+    }
+
+    /** At close, with the dispatchers stopped: stops the component if it runs. */
+    void stopForClose() {
+        State was = lifecycle;
+        if (was == State.RUNNING) {
+            lifecycle = State.STOPPING;
+            stopLogic(logic);
+            lifecycle = State.STOPPED;
+        } else if (was != State.FAILED) {
+            lifecycle = State.STOPPED;
+        }
+    }
+
+    private void handle(Message message, long nowNs) {
+        if (lifecycle != State.RUNNING) {
+            kernel.notRunning(this, message);
+            return;
+        }
+        Component current = logic;
+        try {
+            current.onMessage(message, context);
+            if (snapshotting) {
+                lastSnapshot = current.snapshot();
+            }
+            HANDLED.setRelease(this, handled + 1);
+        } catch (Throwable failure) {
+            onFailure(message, failure, nowNs);
+        }
+        LAST_HANDLING_NS.setRelease(this, kernel.clock().nanoTime() - nowNs);
+    }
+
+    // ---------------------------------------------------------------- supervision (owner thread)
+
+    private void onFailure(Message message, Throwable failure, long nowNs) {
+        long failures = failed + 1;
+        kernel.reportFailure(this, message, failure, failures);
+        try {
+            applyPolicy(failure, nowNs);
+        } finally {
+            // Counted once the policy is applied, so a reader who sees the failure sees its restart.
+            FAILED.setRelease(this, failures);
+        }
+    }
+
+    private void applyPolicy(Throwable failure, long nowNs) {
+        if (policy.restart() == SupervisionPolicy.Restart.STOP) {
+            lifecycle = State.STOPPING;
+            stopLogic(logic);
+            lifecycle = State.FAILED;
+            log.error("node {}: component '{}' stopped after its failure (policy STOP); messages to it are undeliverable",
+                    kernel.nodeId(), name);
+        } else if (withinIntensity(nowNs)) {
+            restart(nowNs);
+        } else {
+            log.error("node {}: component '{}' failed more than {} times within {} ms; escalating to the node",
+                    kernel.nodeId(), name, policy.maxRestarts(), policy.windowNs() / 1_000_000);
+            kernel.escalate(this, failure);
+        }
+    }
+
+    /** Whether one more restart stays within {@code maxRestarts} per {@code windowNs}. */
+    private boolean withinIntensity(long nowNs) {
+        int max = restartTimesNs.length;
+        if (max == 0) {
+            return false;
+        }
+        // When the ring is full, restartHead points at the oldest of the last max restarts.
+        return restartsInRing < max || nowNs - restartTimesNs[restartHead] >= policy.windowNs();
+    }
+
+    private void restart(long nowNs) {
+        restartTimesNs[restartHead] = nowNs;
+        restartHead = (restartHead + 1) % restartTimesNs.length;
+        restartsInRing = Math.min(restartsInRing + 1, restartTimesNs.length);
+        long count = restarts + 1;
+        RESTARTS.setRelease(this, count);
+
+        boolean fromSnapshot = snapshotting && lastSnapshot != null;
+        lifecycle = State.STARTING;
+        stopLogic(logic);
+        try {
+            Component fresh = newLogic(factory);
+            if (fromSnapshot) {
+                fresh.restore(lastSnapshot);
+            }
+            fresh.onStart(context);
+            logic = fresh;
+            lifecycle = State.RUNNING;
+            log.warn("node {}: component '{}' restarted {} (restart {}, {} within the last {} ms)", kernel.nodeId(), name,
+                    fromSnapshot ? "from its last snapshot" : "fresh", count, restartsInRing, policy.windowNs() / 1_000_000);
+        } catch (Throwable failure) {
+            lifecycle = State.FAILED;
+            log.error("node {}: component '{}' could not be restarted; escalating to the node", kernel.nodeId(), name, failure);
+            kernel.escalate(this, failure);
+        }
+    }
+
+    /**
+     * Boundary action of the node-wide reset (the Management Tree's reset): a fresh instance,
+     * started, with its restart history forgotten. Removed components stay stopped.
+     */
+    void reset() {
+        if (removed || lifecycle == State.STOPPED || !started.get()) {
+            return;
+        }
+        if (lifecycle == State.RUNNING) {
+            lifecycle = State.STOPPING;
+            stopLogic(logic);
+        }
+        restartHead = 0;
+        restartsInRing = 0;
+        lastSnapshot = null;
+        lifecycle = State.STARTING;
+        try {
+            Component fresh = newLogic(factory);
+            fresh.onStart(context);
+            lastSnapshot = snapshotting ? fresh.snapshot() : null;
+            logic = fresh;
+            lifecycle = State.RUNNING;
+            log.info("node {}: component '{}' reset", kernel.nodeId(), name);
+        } catch (Throwable failure) {
+            lifecycle = State.FAILED;
+            log.error("node {}: component '{}' failed to start after the reset; it is FAILED", kernel.nodeId(), name, failure);
+        }
+    }
+
+    /**
+     * Boundary action of an upgrade: snapshot, new instance, restore, start, swap, stop the old
+     * one. If anything before the swap throws, the old logic stays and {@code done} fails.
+     */
+    void swap(Supplier<? extends Component> newFactory, CompletableFuture<Void> done) {
+        if (lifecycle != State.RUNNING) {
+            done.completeExceptionally(new IllegalStateException(
+                    "component '" + name + "' is " + lifecycle + "; only a RUNNING component can be swapped"));
+            return;
+        }
+        Component old = logic;
+        Component fresh;
+        ComponentState freshSnapshot;
+        try {
+            ComponentState state = old.snapshot();
+            fresh = newLogic(newFactory);
+            if (state != null) {
+                fresh.restore(state);
+            }
+            fresh.onStart(context);
+            freshSnapshot = snapshotting ? fresh.snapshot() : null;
+        } catch (Throwable failure) {
+            log.warn("node {}: swap of component '{}' rolled back; {} stays: {}", kernel.nodeId(), name,
+                    old.getClass().getName(), failure.toString());
+            done.completeExceptionally(failure);
+            return;
+        }
+        logic = fresh;
+        factory = newFactory;
+        lastSnapshot = freshSnapshot;
+        stopLogic(old);
+        log.info("node {}: component '{}' swapped from {} to {}", kernel.nodeId(), name, old.getClass().getName(),
+                fresh.getClass().getName());
+        done.complete(null);
+    }
+
+    private Component newLogic(Supplier<? extends Component> from) {
+        return Objects.requireNonNull(from.get(), () -> "the factory of component '" + name + "' returned null");
+    }
+
+    private void stopLogic(Component stopping) {
+        try {
+            stopping.onStop();
+        } catch (Throwable failure) {
+            log.warn("node {}: onStop of component '{}' threw; ignored", kernel.nodeId(), name, failure);
+        }
+    }
+}

@@ -1,0 +1,181 @@
+package io.etherware.core.kernel.internal;
+
+import io.etherware.core.component.RequestFailedException;
+import io.etherware.core.component.RequestFailedException.Reason;
+import io.etherware.core.kernel.RequestFailed;
+import io.etherware.core.kernel.Undeliverable;
+import io.etherware.core.message.Message;
+import io.etherware.core.message.MessageId;
+import java.util.LinkedHashSet;
+import java.util.Map;
+import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.RejectedExecutionException;
+import java.util.concurrent.ScheduledThreadPoolExecutor;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.LongAdder;
+import java.util.function.Consumer;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+/**
+ * The requests of a node that wait for their replies: correlation by request id, timeouts on one
+ * shared timer thread, late replies counted and dropped.
+ *
+ * <p>Exactly one of reply, timeout and close settles a request: whichever removes it from the
+ * table first. A reply that finds its request gone because it timed out is a late reply; the
+ * table remembers the most recent timed-out ids (a bounded number) to tell late replies from
+ * replies to plain messages, which are delivered like any message.
+ *
+ * <p>Thread-safety: all methods may be called from any thread.
+ */
+final class RequestTable {
+
+    private static final Logger log = LoggerFactory.getLogger(RequestTable.class);
+    /** How many timed-out request ids are remembered to recognize late replies. */
+    private static final int TIMED_OUT_MEMORY = 4096;
+
+    private final String nodeId;
+    private final Consumer<PendingRequest> outcomeSink;
+    private final ConcurrentHashMap<MessageId, PendingRequest> pending = new ConcurrentHashMap<>();
+    private final LinkedHashSet<MessageId> timedOut = new LinkedHashSet<>();
+    private final ScheduledThreadPoolExecutor timer;
+    private final LongAdder timeouts = new LongAdder();
+    private final LongAdder lateReplies = new LongAdder();
+
+    /**
+     * @param outcomeSink hands a settled-to-be request to its requester (a job for a component,
+     *                    or {@link PendingRequest#settle()} directly)
+     */
+    RequestTable(String nodeId, Consumer<PendingRequest> outcomeSink) {
+        this.nodeId = nodeId;
+        this.outcomeSink = outcomeSink;
+        this.timer = new ScheduledThreadPoolExecutor(1, runnable -> {
+            Thread thread = new Thread(runnable, "etherware-timer-" + nodeId);
+            thread.setDaemon(true);
+            return thread;
+        });
+        timer.setRemoveOnCancelPolicy(true);
+        timer.setExecuteExistingDelayedTasksAfterShutdownPolicy(false);
+    }
+
+    /**
+     * Registers {@code request} before it is sent and arms its timeout.
+     *
+     * @throws IllegalStateException if the node is closed
+     */
+    PendingRequest register(Message request, LocalShell requester, long timeoutNs) {
+        var entry = new PendingRequest(request, requester);
+        if (pending.putIfAbsent(entry.id, entry) != null) {
+            throw new IllegalArgumentException("request id " + entry.id + " is already waiting for a reply");
+        }
+        try {
+            entry.timeout = timer.schedule(() -> onTimeout(entry, timeoutNs), timeoutNs, TimeUnit.NANOSECONDS);
+        } catch (RejectedExecutionException e) {
+            pending.remove(entry.id);
+            throw new IllegalStateException("node '" + nodeId + "' is closed; no more requests", e);
+        }
+        return entry;
+    }
+
+    /** Forgets a request that could not be sent. */
+    void cancel(PendingRequest entry) {
+        if (pending.remove(entry.id, entry)) {
+            cancelTimeout(entry);
+        }
+    }
+
+    boolean isPending(MessageId requestId) {
+        return pending.containsKey(requestId);
+    }
+
+    /**
+     * Handles a reply to a request of this node.
+     *
+     * @return true if the reply was consumed (it completed its request, or it was late and was
+     *         dropped); false if it answers no request and must be delivered as a message
+     */
+    boolean interceptReply(Message reply) {
+        MessageId requestId = reply.correlationId();
+        PendingRequest entry = pending.remove(requestId);
+        if (entry != null) {
+            cancelTimeout(entry);
+            record(entry, reply);
+            outcomeSink.accept(entry);
+            return true;
+        }
+        boolean late;
+        synchronized (timedOut) {
+            late = timedOut.contains(requestId);
+        }
+        if (late) {
+            lateReplies.increment();
+            log.debug("node {}: dropping late reply {} to request {} (timed out)", nodeId, reply.messageId(), requestId);
+            return true;
+        }
+        if (reply.contents() instanceof RequestFailed failed) {
+            // A responder on another node reports a failure on a message that was not a request:
+            // there is no future to fail; the responder's node has logged and counted it.
+            log.debug("node {}: failure notice for {}, which is no pending request: {}", nodeId, requestId, failed.reason());
+            return true;
+        }
+        return false;
+    }
+
+    private static void record(PendingRequest entry, Message reply) {
+        switch (reply.contents()) {
+            case Undeliverable notice -> entry.failWith(new RequestFailedException(Reason.UNDELIVERABLE, entry.id,
+                    "request " + entry.id + " to '" + entry.request.profile() + "' is undeliverable: " + notice.reason()));
+            case RequestFailed notice -> entry.failWith(new RequestFailedException(Reason.RESPONDER_FAILED, entry.id,
+                    "responder '" + notice.responder() + "' failed handling request " + entry.id + ": " + notice.reason()));
+            default -> entry.succeedWith(reply);
+        }
+    }
+
+    private void onTimeout(PendingRequest entry, long timeoutNs) {
+        if (!pending.remove(entry.id, entry)) {
+            return;
+        }
+        timeouts.increment();
+        synchronized (timedOut) {
+            timedOut.add(entry.id);
+            if (timedOut.size() > TIMED_OUT_MEMORY) {
+                timedOut.removeFirst();
+            }
+        }
+        entry.failWith(new RequestFailedException(Reason.TIMEOUT, entry.id, "no reply from '" + entry.request.profile()
+                + "' to request " + entry.id + " within " + timeoutNs / 1_000_000 + " ms"));
+        outcomeSink.accept(entry);
+    }
+
+    private static void cancelTimeout(PendingRequest entry) {
+        var timeout = entry.timeout;
+        if (timeout != null) {
+            timeout.cancel(false);
+        }
+    }
+
+    /** Fails every waiting request with {@code NODE_CLOSED} and stops the timer. */
+    void close() {
+        timer.shutdownNow();
+        for (Map.Entry<MessageId, PendingRequest> item : pending.entrySet()) {
+            PendingRequest entry = item.getValue();
+            if (pending.remove(item.getKey(), entry)) {
+                entry.failWith(closedError(entry.id, nodeId));
+                entry.settle();
+            }
+        }
+    }
+
+    static RequestFailedException closedError(MessageId requestId, String nodeId) {
+        return new RequestFailedException(Reason.NODE_CLOSED, requestId,
+                "node '" + nodeId + "' closed before request " + requestId + " got its reply");
+    }
+
+    long timeoutCount() {
+        return timeouts.sum();
+    }
+
+    long lateReplyCount() {
+        return lateReplies.sum();
+    }
+}

@@ -1,0 +1,348 @@
+package io.etherware.core.kernel;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertInstanceOf;
+import static org.junit.jupiter.api.Assertions.assertThrows;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.etherware.core.component.Component;
+import io.etherware.core.component.ComponentContext;
+import io.etherware.core.component.ComponentState;
+import io.etherware.core.component.Shell;
+import io.etherware.core.message.Message;
+import io.etherware.core.message.Profile;
+import io.etherware.core.message.Text;
+import io.etherware.core.testing.Await;
+import io.etherware.core.testing.Counted;
+import io.etherware.core.testing.MultiDispatcherScheduler;
+import io.etherware.core.testing.Num;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.CopyOnWriteArrayList;
+import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicBoolean;
+import java.util.concurrent.atomic.AtomicLong;
+import java.util.function.Supplier;
+import java.util.stream.LongStream;
+import org.junit.jupiter.api.Test;
+
+/** The hooks of runtime upgrade and migration: hold / release, swap, remove with re-resolution. */
+class ManagementHooksTest {
+
+    private static final Profile TARGET = Profile.of("target");
+    private static final Profile MARKER = Profile.of("marker");
+
+    /** Counts messages, keeps the values; its count is its state. */
+    static class CounterV1 implements Component {
+        final List<String> log;
+        long count;
+
+        CounterV1(List<String> log) {
+            this.log = log;
+        }
+
+        @Override
+        public void onMessage(Message message, ComponentContext context) {
+            count++;
+            log.add("v1:" + count);
+        }
+
+        @Override
+        public ComponentState snapshot() {
+            return new Counted(count);
+        }
+
+        @Override
+        public void restore(ComponentState state) throws Exception {
+            count = ((Counted) state).count();
+        }
+    }
+
+    /** The upgrade: counts in tens from the old count. */
+    static final class CounterV2 extends CounterV1 {
+        CounterV2(List<String> log) {
+            super(log);
+        }
+
+        @Override
+        public void onMessage(Message message, ComponentContext context) {
+            count += 10;
+            log.add("v2:" + count);
+        }
+    }
+
+    @Test
+    void shouldKeepMessagesWhileHeldAndDeliverThemInOrderExactlyOnceOnRelease() throws Exception {
+        var received = new CopyOnWriteArrayList<Long>();
+        var markers = new CopyOnWriteArrayList<String>();
+        try (var node = EtherwareNode.builder().nodeId("hold").build()) {
+            node.add(TARGET, () -> (message, context) -> received.add(message.contentsAs(Num.class).value()));
+            node.add(MARKER, () -> (message, context) -> markers.add("seen"));
+            node.start();
+            node.send(TARGET, new Num(0));
+            Await.until("the first message", () -> received.size() == 1);
+
+            node.hold(TARGET);
+            for (long i = 1; i <= 100; i++) {
+                node.send(TARGET, new Num(i));
+            }
+            // The marker is queued after the 100 messages on the one FIFO dispatcher: once it is
+            // handled, the target's messages have all been taken and kept.
+            node.send(MARKER, new Text("m"));
+            Await.until("the marker", () -> markers.size() == 1);
+            assertEquals(List.of(0L), received, "nothing is delivered while held");
+
+            node.release(TARGET);
+            Await.until("the held messages", () -> received.size() == 101);
+            assertEquals(LongStream.rangeClosed(0, 100).boxed().toList(), received);
+            node.send(MARKER, new Text("m"));
+            Await.until("a second marker", () -> markers.size() == 2);
+            assertEquals(101, received.size(), "each held message exactly once");
+            assertEquals(101, node.shell(TARGET).handledCount());
+        }
+    }
+
+    @Test
+    void shouldDeliverEveryMessageExactlyOnceWhenHeldSwappedAndReleasedRepeatedlyUnderLoad() throws Exception {
+        int senders = 3;
+        int perSender = 20_000;
+        var seen = ConcurrentHashMap.<Long>newKeySet();
+        var duplicates = new AtomicLong();
+        var overlaps = new AtomicLong();
+        var inside = new AtomicBoolean();
+        try (var node = EtherwareNode.builder().nodeId("hold-stress")
+                .scheduler(() -> MultiDispatcherScheduler.roundRobin(3)).build()) {
+            Supplier<Component> logic = () -> (message, context) -> {
+                if (!inside.compareAndSet(false, true)) {
+                    overlaps.incrementAndGet();
+                }
+                if (!seen.add(message.contentsAs(Num.class).value())) {
+                    duplicates.incrementAndGet();
+                }
+                inside.set(false);
+            };
+            Shell shell = node.add(TARGET, logic);
+            node.start();
+            var threads = new ArrayList<Thread>();
+            for (int s = 0; s < senders; s++) {
+                long base = (long) s * perSender;
+                threads.add(Thread.ofPlatform().start(() -> {
+                    for (long i = 0; i < perSender; i++) {
+                        node.send(TARGET, new Num(base + i));
+                    }
+                }));
+            }
+            int cycles = 0;
+            while (threads.stream().anyMatch(Thread::isAlive) || cycles < 20) {
+                node.hold(TARGET);
+                if (cycles % 4 == 0) {
+                    node.swap(TARGET, logic); // a swap while held: the gate is taken, then left held
+                }
+                node.release(TARGET);
+                cycles++;
+            }
+            for (Thread thread : threads) {
+                thread.join();
+            }
+            Await.until("every message", () -> shell.handledCount() == (long) senders * perSender);
+            assertEquals((long) senders * perSender, seen.size());
+            assertEquals(0, duplicates.get());
+            assertEquals(0, overlaps.get());
+            assertTrue(cycles >= 20);
+        }
+    }
+
+    @Test
+    void shouldReturnFromHoldOnlyOnceTheHandlingInProgressIsOver() throws Exception {
+        var entered = new CountDownLatch(1);
+        var finish = new CountDownLatch(1);
+        var received = new CopyOnWriteArrayList<Long>();
+        try (var node = EtherwareNode.builder().nodeId("hold-boundary")
+                .scheduler(() -> MultiDispatcherScheduler.roundRobin(2)).build()) {
+            node.add(TARGET, () -> (message, context) -> {
+                long value = message.contentsAs(Num.class).value();
+                if (value == 0) {
+                    entered.countDown();
+                    assertTrue(finish.await(30, TimeUnit.SECONDS));
+                }
+                received.add(value);
+            });
+            node.start();
+            node.send(TARGET, new Num(0));
+            assertTrue(entered.await(30, TimeUnit.SECONDS));
+
+            CompletableFuture<Void> held = node.holdAsync(TARGET);
+            assertFalse(held.isDone(), "the component is inside a handler: not at a boundary yet");
+            node.send(TARGET, new Num(1));
+            node.send(TARGET, new Num(2));
+            finish.countDown();
+            held.get(30, TimeUnit.SECONDS);
+            assertEquals(List.of(0L), received);
+            assertEquals(Shell.State.RUNNING, node.shell(TARGET).state());
+
+            node.release(TARGET);
+            Await.until("the kept messages", () -> received.size() == 3);
+            assertEquals(List.of(0L, 1L, 2L), received.stream().sorted().toList());
+        }
+    }
+
+    @Test
+    void shouldCarryTheStateIntoTheNewLogicWhenSwapped() {
+        var log = new CopyOnWriteArrayList<String>();
+        try (var node = EtherwareNode.builder().nodeId("swap").build()) {
+            Shell shell = node.add(TARGET, () -> new CounterV1(log));
+            node.start();
+            for (int i = 0; i < 5; i++) {
+                node.send(TARGET, new Num(i));
+            }
+            Await.until("five messages for v1", () -> shell.handledCount() == 5);
+            node.swap(TARGET, () -> new CounterV2(log));
+            node.send(TARGET, new Num(5));
+            Await.until("the message after the swap", () -> log.size() == 6);
+            assertEquals(List.of("v1:1", "v1:2", "v1:3", "v1:4", "v1:5", "v2:15"), log);
+            assertEquals(CounterV2.class, shell.logicType());
+        }
+    }
+
+    @Test
+    void shouldKeepTheOldLogicAndReturnTheErrorWhenRestoreThrows() {
+        var log = new CopyOnWriteArrayList<String>();
+        try (var node = EtherwareNode.builder().nodeId("swap-rollback").build()) {
+            Shell shell = node.add(TARGET, () -> new CounterV1(log));
+            node.start();
+            node.send(TARGET, new Num(1));
+            node.send(TARGET, new Num(2));
+            Await.until("two messages for v1", () -> shell.handledCount() == 2);
+            var error = assertThrows(IllegalStateException.class, () -> node.swap(TARGET, () -> new CounterV1(log) {
+                @Override
+                public void restore(ComponentState state) throws Exception {
+                    throw new Exception("state schema " + state.schemaVersion() + " not supported");
+                }
+            }));
+            assertTrue(error.getMessage().contains("state schema 1 not supported"), error.getMessage());
+            assertEquals(CounterV1.class, shell.logicType());
+            node.send(TARGET, new Num(3));
+            Await.until("the message after the rollback", () -> log.size() == 3);
+            assertEquals(List.of("v1:1", "v1:2", "v1:3"), log);
+            assertEquals(Shell.State.RUNNING, shell.state());
+        }
+    }
+
+    @Test
+    void shouldForwardTheKeptMessagesInOrderThroughTheRouteWhenRelocated() throws Exception {
+        var local = new CopyOnWriteArrayList<Long>();
+        var forwarded = new CopyOnWriteArrayList<Long>();
+        RemoteRoute route = message -> forwarded.add(message.contentsAs(Num.class).value());
+        try (var node = EtherwareNode.builder().nodeId("relocate").build()) {
+            node.add(TARGET, () -> new CounterV1(new CopyOnWriteArrayList<>()) {
+                @Override
+                public void onMessage(Message message, ComponentContext context) {
+                    super.onMessage(message, context);
+                    local.add(message.contentsAs(Num.class).value());
+                }
+            });
+            node.add(MARKER, () -> (message, context) -> context.reply(message, message.contents()));
+            node.start();
+            node.send(TARGET, new Num(0));
+            Await.until("the first message", () -> local.size() == 1);
+
+            node.hold(TARGET);
+            ComponentState state = node.snapshotAsync(TARGET).get(30, TimeUnit.SECONDS);
+            assertEquals(new Counted(1), state, "the state a migration ships");
+            for (long i = 1; i <= 10; i++) {
+                node.send(TARGET, new Num(i));
+            }
+            node.requestBlocking(MARKER, new Text("m")); // the FIFO queue has passed the 10 messages
+            node.relocateAsync(TARGET, route).get(30, TimeUnit.SECONDS);
+            node.send(TARGET, new Num(11)); // now straight through the route
+
+            assertEquals(List.of(0L), local);
+            assertEquals(LongStream.rangeClosed(1, 11).boxed().toList(), forwarded);
+            assertInstanceOf(Endpoint.Remote.class, node.registry().resolve(TARGET));
+            assertEquals(0, node.stats().undeliverable());
+            assertTrue(node.shells().stream().noneMatch(shell -> shell.profile().equals(TARGET)));
+        }
+    }
+
+    @Test
+    void shouldSettleAKeptRequestOutcomeLocallyWhenRelocated() throws Exception {
+        var forwarded = new CopyOnWriteArrayList<Message>();
+        var replyNow = new CountDownLatch(1);
+        var outcome = new CompletableFuture<Message>();
+        try (var node = EtherwareNode.builder().nodeId("relocate-outcome").build()) {
+            node.add(MARKER, () -> (message, context) -> Thread.ofPlatform().start(() -> {
+                try {
+                    replyNow.await(30, TimeUnit.SECONDS);
+                } catch (InterruptedException e) {
+                    return;
+                }
+                context.reply(message, new Text("answer"));
+            }));
+            node.add(TARGET, () -> (message, context) -> context.request(MARKER, new Text("question"))
+                    .whenComplete((reply, error) -> outcome.complete(reply)));
+            node.start();
+            node.send(TARGET, new Text("ask"));
+            Await.until("the question is asked", () -> node.shell(MARKER).handledCount() == 1);
+            node.hold(TARGET);
+            replyNow.countDown();
+            Await.until("the reply reaches the kernel", () -> node.stats().jobs() == 3);
+            assertFalse(outcome.isDone(), "the outcome is kept while the requester is held");
+
+            node.relocateAsync(TARGET, forwarded::add).get(30, TimeUnit.SECONDS);
+            assertEquals(new Text("answer"), outcome.get(30, TimeUnit.SECONDS).contents());
+            assertEquals(List.of(), forwarded, "a request outcome is not a message for the new host");
+        }
+    }
+
+    @Test
+    void shouldResolveTheKeptMessagesAnewWhenAHeldComponentIsRemoved() {
+        var received = new CopyOnWriteArrayList<Long>();
+        try (var node = EtherwareNode.builder().nodeId("remove-held").build()) {
+            node.add(TARGET, () -> (message, context) -> received.add(message.contentsAs(Num.class).value()));
+            node.add(MARKER, () -> (message, context) -> context.reply(message, message.contents()));
+            node.start();
+            node.hold(TARGET);
+            for (long i = 1; i <= 3; i++) {
+                node.send(TARGET, new Num(i));
+            }
+            node.requestBlocking(MARKER, new Text("m"));
+            node.remove(TARGET);
+            // Nothing hosts the profile any more: each kept message is undeliverable, counted
+            // (and its sender told, had it one); none vanishes, none reaches the removed logic.
+            Await.until("three undeliverable", () -> node.stats().undeliverable() == 3);
+            assertEquals(List.of(), received);
+        }
+    }
+
+    @Test
+    void shouldTellSendersWhenTheRemovedComponentHasNoSuccessor() throws Exception {
+        var notices = new CopyOnWriteArrayList<Message>();
+        try (var node = EtherwareNode.builder().nodeId("remove").build()) {
+            node.add(TARGET, () -> (message, context) -> { });
+            node.add(MARKER, () -> new Component() {
+                @Override
+                public void onMessage(Message message, ComponentContext context) {
+                    if (message.contents() instanceof Undeliverable) {
+                        notices.add(message);
+                    } else {
+                        context.send(TARGET, new Num(1));
+                    }
+                }
+            });
+            node.start();
+            node.remove(TARGET);
+            assertEquals(Shell.State.STOPPED, node.shells().stream()
+                    .filter(shell -> shell.profile().equals(TARGET)).findAny().map(Shell::state)
+                    .orElse(Shell.State.STOPPED));
+            node.send(MARKER, new Text("poke"));
+            Await.until("the notice", () -> notices.size() == 1);
+            var undeliverable = assertInstanceOf(Undeliverable.class, notices.getFirst().contents());
+            assertTrue(undeliverable.reason().contains("no component matches profile 'target'"), undeliverable.reason());
+            assertThrows(ProfileResolutionException.class, () -> node.shell(TARGET));
+        }
+    }
+}
