@@ -24,11 +24,11 @@ import org.slf4j.LoggerFactory;
  * through one synchronous exchange of its {@link DspClient}.
  *
  * <p><b>Threading and timing.</b> Called by the kernel one message at a time, on its dispatcher.
- * Unlike most components it blocks there: each exchange waits for the board's reply, about 2.6 ms
- * for a reading and 1.9 ms for a command at 115200 baud, up to the client's timeout times its
- * attempts when frames are lost. That wait is the serial round trip of the real plant and is part
- * of the control loop's budget, as in the paper (a 15 ms period of which about 4.5 ms is serial
- * time); on a node with several dispatchers, place the proxy so it does not delay unrelated
+ * Unlike most components it blocks there: each exchange waits for the board's reply, about 2.7 ms
+ * for a reading and 2.0 ms for a command at 115200 baud (wire time plus up to one 0.5 ms board
+ * cycle), up to the client's timeout times its attempts when frames are lost. That wait is the
+ * serial round trip of the real plant and is part of the control loop's budget, as in the paper:
+ * of a 15 ms period about 4.7 ms are serial time; on a node with several dispatchers, place the proxy so it does not delay unrelated
  * components. Serial failures are answered and counted, never thrown, so they do not trigger a
  * restart.
  *

@@ -57,6 +57,10 @@ class PendulumControllerLockStepTest {
             assertEquals(0, proxy.serialFailures());
             assertEquals(0, loop.board.status().watchdogTrips());
             assertEquals(version, state.gainVersion());
+            // Release to reading: 7 bytes out, sampled at the next 0.5 ms board cycle, 19 bytes back.
+            ControlCycle first = loop.recorder.cycles().getFirst();
+            assertEquals(1_000, first.dspTimeUs());
+            assertEquals(1_000_000L + Math.round(19 * 1e10 / 115_200), first.responseNs(), 1_000L);
         }
     }
 
