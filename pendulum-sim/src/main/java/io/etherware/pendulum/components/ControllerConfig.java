@@ -13,7 +13,7 @@ import java.util.Objects;
  *     exact profile or a query that matches it
  * @param replyTimeoutNs how long a cycle waits for its reading; keep it below the Tick period so
  *     a lost reading is known before the next release (otherwise the next Tick abandons the cycle
- *     and counts an overrun). The kernel times requests out on the wall clock.
+ *     and counts it as abandoned). The kernel times requests out on the wall clock.
  * @param theta1ReferenceRad θ1r, the arm set point of a fresh controller (a restored state keeps
  *     its own)
  * @param maxTorqueNm the torque the control law clamps to

@@ -16,12 +16,13 @@ import java.util.Objects;
  *     no torque was sent, the board held the last one
  * @param lateReplies readout outcomes that came after a newer Tick had abandoned their cycle;
  *     dropped
- * @param overruns Ticks that found the previous cycle still waiting for its readout (that cycle
- *     is abandoned)
+ * @param abandonedCycles Ticks that found the previous cycle still waiting for its reading: that
+ *     cycle is abandoned, no torque comes from it and the board holds the last one for another
+ *     period. Causes: a reading slower than the period, or a swap between request and reading
  * @param skippedTicks releases missing from the Tick sequence (gaps the ticker skipped)
  * @param lastTickSequence the sequence of the last Tick, or -1 before the first
  * @param pendingCycle the cycle waiting for its readout, or -1; a new instance that takes over a
- *     pending cycle counts it as an overrun at its first Tick, because the reply goes to the
+ *     pending cycle counts it as abandoned at its first Tick, because the reply goes to the
  *     instance that asked
  * @param lastTorqueNm the last torque sent
  */
@@ -30,7 +31,7 @@ public record ControllerState(
         long ticks,
         long missedReplies,
         long lateReplies,
-        long overruns,
+        long abandonedCycles,
         long skippedTicks,
         long lastTickSequence,
         long pendingCycle,

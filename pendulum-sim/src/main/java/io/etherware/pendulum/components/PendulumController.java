@@ -26,7 +26,7 @@ import org.slf4j.LoggerFactory;
  *
  * <p>A failed reading (timeout, {@link DspFault}, undeliverable) skips the cycle: no torque is
  * sent and the board holds the last one, until its watchdog cuts the motor after 100 ms. A Tick
- * that comes while the previous cycle still waits abandons that cycle (counted as an overrun; its
+ * that comes while the previous cycle still waits abandons that cycle (counted in {@code abandonedCycles}; its
  * reading, if it comes, is dropped as late), so a slow link never makes cycles pile up.
  *
  * <p><b>State.</b> {@link #snapshot()} returns a {@link ControllerState}: the estimator's memory,
@@ -66,7 +66,7 @@ public final class PendulumController implements Component {
     private long ticks;
     private long missedReplies;
     private long lateReplies;
-    private long overruns;
+    private long abandonedCycles;
     private long skippedTicks;
     private long lastTickSequence = -1;
     private long pendingCycle = -1;
@@ -134,7 +134,7 @@ public final class PendulumController implements Component {
         }
         lastTickSequence = sequence;
         if (pendingCycle >= 0) {
-            overruns++;
+            abandonedCycles++;
         }
         warnIfTimeoutExceedsPeriod(tick);
 
@@ -149,7 +149,7 @@ public final class PendulumController implements Component {
     /** The reading's outcome, in this component's turn (see the type's threading note). */
     private void onReadout(long cycle, QoS qos, Message reply, Throwable failure) {
         if (stopped) {
-            return; // replaced by an upgrade or a restart: the successor counts this cycle as an overrun
+            return; // replaced by an upgrade or a restart: the successor counts this cycle as abandoned
         }
         try {
             long nowNs = context.clock().nanoTime();
@@ -196,7 +196,7 @@ public final class PendulumController implements Component {
         if (!warnedTimeoutVsPeriod && tick.periodNs() > 0 && config.replyTimeoutNs() >= tick.periodNs()) {
             warnedTimeoutVsPeriod = true;
             LOG.warn("{}: replyTimeoutNs={} is not below the Tick period {} ns: a lost reading is noticed only"
-                    + " after the next release, which abandons its cycle (counted as an overrun)",
+                    + " after the next release, which abandons its cycle",
                     context.self(), config.replyTimeoutNs(), tick.periodNs());
         }
     }
@@ -208,7 +208,7 @@ public final class PendulumController implements Component {
 
     @Override
     public ControllerState snapshot() {
-        return new ControllerState(control.state(), ticks, missedReplies, lateReplies, overruns, skippedTicks,
+        return new ControllerState(control.state(), ticks, missedReplies, lateReplies, abandonedCycles, skippedTicks,
                 lastTickSequence, pendingCycle, lastTorqueNm);
     }
 
@@ -235,7 +235,7 @@ public final class PendulumController implements Component {
         ticks = previous.ticks();
         missedReplies = previous.missedReplies();
         lateReplies = previous.lateReplies();
-        overruns = previous.overruns();
+        abandonedCycles = previous.abandonedCycles();
         skippedTicks = previous.skippedTicks();
         lastTickSequence = previous.lastTickSequence();
         pendingCycle = previous.pendingCycle();

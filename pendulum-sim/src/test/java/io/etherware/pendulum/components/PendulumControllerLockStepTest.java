@@ -51,7 +51,7 @@ class PendulumControllerLockStepTest {
             assertTrue(Math.abs(loop.board.plantState().theta1Rad()) < 0.2, () -> "arm " + loop.board.plantState());
             assertEquals(400, state.ticks());
             assertEquals(400, state.commands());
-            assertEquals(0, state.missedReplies() + state.lateReplies() + state.overruns() + state.skippedTicks());
+            assertEquals(0, state.missedReplies() + state.lateReplies() + state.abandonedCycles() + state.skippedTicks());
             assertEquals(400, proxy.angleReads());
             assertEquals(400, proxy.torqueCommands());
             assertEquals(0, proxy.serialFailures());
@@ -119,7 +119,7 @@ class PendulumControllerLockStepTest {
             assertEquals(before.control().estimator().samples() + 200, estimator.samples(),
                     "the estimator continues: it was not reset");
             assertEquals(0, estimator.discontinuities());
-            assertEquals(0, end.overruns() + end.missedReplies());
+            assertEquals(0, end.abandonedCycles() + end.missedReplies());
             assertTrue(loop.probe.maxAbsTheta2Rad < 0.02, () -> "max |θ2| after the swap " + loop.probe.maxAbsTheta2Rad);
 
             List<ControlCycle> cycles = loop.recorder.cycles();
@@ -169,7 +169,7 @@ class PendulumControllerLockStepTest {
 
             loop.cycles(100);
             ControllerState state = loop.controllerState();
-            assertEquals(1, state.overruns(), "the successor counted the abandoned cycle");
+            assertEquals(1, state.abandonedCycles(), "the successor counted the abandoned cycle");
             assertEquals(150, state.commands());
             assertEquals(151, state.ticks());
             assertEquals(-1, state.pendingCycle());
