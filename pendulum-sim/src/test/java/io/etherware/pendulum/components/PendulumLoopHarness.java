@@ -2,6 +2,7 @@ package io.etherware.pendulum.components;
 
 import io.etherware.pendulum.control.GainSet;
 import io.etherware.pendulum.plant.PendulumState;
+import io.etherware.pendulum.serial.BoardStatus;
 import java.util.Arrays;
 import java.util.List;
 
@@ -45,12 +46,13 @@ public final class PendulumLoopHarness {
             } else {
                 Thread.sleep(seconds * 1_000L);
             }
+            BoardStatus board = loop.board.status(); // before the watchdog notices the ticker stopped
             loop.stopTicker();
-            report(loop, seconds, realTime, swap);
+            report(loop, board, seconds, realTime, swap);
         }
     }
 
-    private static void report(RealTimeLoop loop, long seconds, boolean realTime, boolean swap) {
+    private static void report(RealTimeLoop loop, BoardStatus board, long seconds, boolean realTime, boolean swap) {
         List<ControlCycle> cycles = loop.recorder.cycles();
         long originNs = cycles.getFirst().releaseNs();
         List<ControlCycle> measured = cycles.stream().filter(c -> c.releaseNs() - originNs >= WARM_UP_NS).toList();
@@ -84,7 +86,7 @@ public final class PendulumLoopHarness {
                 state.ticks(), state.commands(), state.missedReplies(), state.lateReplies(), state.abandonedCycles(),
                 state.skippedTicks());
         System.out.println("proxy: " + loop.proxyCounters());
-        System.out.println("board: " + loop.board.status() + ", late board cycles " + loop.board.lateCycles());
+        System.out.println("board (while running): " + board + ", late board cycles " + loop.board.lateCycles());
         System.out.println("node: " + loop.node.stats());
     }
 
