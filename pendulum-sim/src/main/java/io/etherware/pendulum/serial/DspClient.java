@@ -33,7 +33,7 @@ public final class DspClient {
         /** 4096 counts per revolution. */
         public static final int DEFAULT_COUNTS_PER_REVOLUTION = 4096;
         /**
-         * 4 ms: at 115200 baud a READ_ANGLES (5 bytes) and its reply (19 bytes) take 2.1 ms on the
+         * 4 ms: at 115200 baud a READ_ANGLES (7 bytes) and its reply (19 bytes) take 2.3 ms on the
          * wire and the board answers within its 0.5 ms cycle. Two attempts of a read and of a
          * command then fit in the paper's 15 ms period.
          */

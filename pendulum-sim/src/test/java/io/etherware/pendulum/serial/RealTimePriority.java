@@ -16,9 +16,10 @@ import org.slf4j.LoggerFactory;
  * Test helper: puts the calling thread under SCHED_FIFO at a given priority through
  * {@code sched_setscheduler(0, …)} (Linux applies it to the calling thread only), or warns once
  * and runs on. Only for threads that sleep between short bursts of work — never a spinning
- * thread. The real-time module provides the production version of this.
+ * thread. The real-time module provides the production version of this; pendulum-sim does not
+ * depend on it, so its tests use this one (public for the component tests).
  */
-final class RealTimePriority {
+public final class RealTimePriority {
 
     private static final Logger LOG = LoggerFactory.getLogger(RealTimePriority.class);
     private static final int SCHED_FIFO = 1;
@@ -35,7 +36,7 @@ final class RealTimePriority {
     private RealTimePriority() {}
 
     /** Tries SCHED_FIFO at {@code priority} for the calling thread; returns whether it worked. */
-    static boolean requestFifo(int priority) {
+    public static boolean requestFifo(int priority) {
         try (Arena arena = Arena.ofConfined()) {
             MemorySegment errno = arena.allocate(ERRNO_STATE);
             MemorySegment param = arena.allocate(ValueLayout.JAVA_INT);
@@ -54,7 +55,7 @@ final class RealTimePriority {
     }
 
     /** A factory of daemon threads that ask for SCHED_FIFO at {@code priority} as they start. */
-    static ThreadFactory fifoThreads(String name, int priority) {
+    public static ThreadFactory fifoThreads(String name, int priority) {
         return runnable -> {
             Thread thread = new Thread(() -> {
                 requestFifo(priority);
