@@ -33,8 +33,16 @@ import org.HdrHistogram.Recorder;
  *       first line of the component's {@code onMessage} (registry lookup, job, gate and shell
  *       included).</li>
  * </ul>
- * Not part of the test suite; run with {@code java -cp} (see the module's report for the exact
- * command). Arguments: {@code [seconds per measurement, default 5]}.
+ * Not part of the test suite. Arguments: {@code [seconds per measurement, default 5]}. From the
+ * repository root, as root for SCHED_FIFO (about a minute with 4 s rows):
+ * <pre>{@code
+ * ./mvnw -q -pl etherware-rt -am test-compile
+ * CP=etherware-rt/target/test-classes:etherware-rt/target/classes:etherware-core/target/classes:$(find \
+ *   ~/.m2/repository -name slf4j-api-2.0.20.jar -o -name slf4j-simple-2.0.20.jar -o -name HdrHistogram-2.2.2.jar \
+ *   | paste -sd:)
+ * $JAVA_HOME/bin/java --enable-native-access=ALL-UNNAMED -Xms256m -Xmx256m -XX:+AlwaysPreTouch \
+ *   -Dorg.slf4j.simpleLogger.defaultLogLevel=warn -cp "$CP" io.etherware.rt.scheduling.DispatchLatencyHarness 4
+ * }</pre>
  *
  * <p>The flood: LOW messages to component B, each burning {@value #LOW_JOB_US} µs of CPU, released
  * one every {@value #LOW_RELEASE_US} µs (at most {@value #LOW_BACKLOG} queued), so the LOW

@@ -43,7 +43,7 @@ class NodePriorityInversionTest {
     }
 
     @Test
-    void shouldRunHighRightAfterTheLowHandlingInProgressBeforeEarlierQueuedLowMessages() throws Exception {
+    void shouldRunHighRightAfterTheLowHandlingInProgressWhenOneComponentGetsBothCriticalities() throws Exception {
         var scheduler = RealtimeScheduler.withDefaults();
         var firstLowRunning = new CountDownLatch(1);
         var releaseFirstLow = new CountDownLatch(1);
@@ -92,7 +92,7 @@ class NodePriorityInversionTest {
     }
 
     @Test
-    void shouldRunHighAfterEveryEarlierLowMessageWithTheFifoBaseline() throws Exception {
+    void shouldRunHighAfterEveryEarlierLowMessageWhenTheSchedulerIsTheFifoBaseline() throws Exception {
         var firstLowRunning = new CountDownLatch(1);
         var releaseFirstLow = new CountDownLatch(1);
         var order = new CopyOnWriteArrayList<String>();
