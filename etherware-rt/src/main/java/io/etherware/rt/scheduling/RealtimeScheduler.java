@@ -96,7 +96,8 @@ public final class RealtimeScheduler implements Scheduler {
 
     /**
      * Locks memory if configured, starts the dispatcher threads, waits until each has asked the OS
-     * for its priority and CPUs, and logs the {@link PlatformReport}, one line per dispatcher.
+     * for its priority and CPUs, warns once per kind of refusal (quoting the most demanding
+     * dispatcher), and logs the {@link PlatformReport}, one line per dispatcher.
      */
     @Override
     public void start(JobRunner runner, NodeClock clock) {
