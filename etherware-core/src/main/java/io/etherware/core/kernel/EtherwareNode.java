@@ -19,6 +19,7 @@ import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.ExecutionException;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.TimeoutException;
+import java.util.function.LongConsumer;
 import java.util.function.Supplier;
 
 /**
@@ -278,6 +279,12 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
     @Override
     public CompletableFuture<Void> swapAsync(Profile profile, Supplier<? extends Component> factory) {
         return core.swapAsync(profile, factory);
+    }
+
+    @Override
+    public CompletableFuture<SwapTimings> swapAsync(Profile profile, Supplier<? extends Component> factory,
+                                                    LongConsumer onFirstHandling) {
+        return core.swapAsync(profile, factory, onFirstHandling);
     }
 
     @Override
