@@ -21,6 +21,8 @@ import java.util.concurrent.TimeUnit;
 import java.util.concurrent.TimeoutException;
 import java.util.function.LongConsumer;
 import java.util.function.Supplier;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
 
 /**
  * An Etherware node: a kernel, its scheduler and its components (paper Fig. 2).
@@ -45,6 +47,8 @@ import java.util.function.Supplier;
  * there.
  */
 public final class EtherwareNode implements Kernel, AutoCloseable {
+
+    private static final Logger log = LoggerFactory.getLogger(Kernel.class);
 
     static {
         registerContents(ContentsTypes.shared());
@@ -212,6 +216,7 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
      */
     public void swap(Profile profile, Supplier<? extends Component> factory) {
         await(swapAsync(profile, factory), "swap", profile);
+        log.info("node {}: component '{}' swapped to {}", core.nodeId(), profile, shell(profile).logicType().getName());
     }
 
     private void await(CompletableFuture<Void> operation, String what, Profile profile) {

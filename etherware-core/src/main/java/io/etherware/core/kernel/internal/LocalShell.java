@@ -458,7 +458,9 @@ public final class LocalShell implements Shell {
         lastHandlingEndNs = SwapTimings.UNKNOWN_NS;
         firstHandlingProbe = probe;
         stopLogic(old);
-        log.info("node {}: component '{}' swapped from {} to {}", kernel.nodeId(), name, old.getClass().getName(),
+        // Debug, not info: this runs inside the pause, where a console write costs tens of
+        // microseconds; the caller of the swap reports it (EtherwareNode.swap, the management service).
+        log.debug("node {}: component '{}' swapped from {} to {}", kernel.nodeId(), name, old.getClass().getName(),
                 fresh.getClass().getName());
         done.complete(new SwapTimings(oldEndNs, startNs, kernel.clock().nanoTime(), schemaVersion));
     }
