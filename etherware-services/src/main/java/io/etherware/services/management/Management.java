@@ -85,6 +85,12 @@ public final class Management {
         return kernel.request(request, timeout.toNanos()).thenApply(Management::upgradeResultOf);
     }
 
+    /** {@link #upgrade(ComponentContext, String, Profile, Implementation, Duration)} with {@link #DEFAULT_TIMEOUT}. */
+    public static CompletableFuture<UpgradeResult> upgrade(ComponentContext context, String nodeId, Profile target,
+                                                           Implementation implementation) {
+        return upgrade(context, nodeId, target, implementation, DEFAULT_TIMEOUT);
+    }
+
     /**
      * From a component (the paper's Requester): asks node {@code nodeId} to upgrade {@code target}.
      * The future completes on the requesting component's dispatcher, like any

@@ -260,6 +260,35 @@ class UpgradeTest {
         }
     }
 
+    @Test
+    void shouldAnswerARequesterComponentOnItsOwnDispatcherWhenItAsksForAnUpgrade() throws Exception {
+        Journal journal = Journal.create("requester");
+        var answered = new java.util.concurrent.CompletableFuture<UpgradeResult>();
+        var answeredOnDispatcher = new java.util.concurrent.atomic.AtomicBoolean();
+        try (var node = node("upgrade-requester", FifoScheduler::new, journal, "requester")) {
+            node.add(Profile.of("requester"), () -> (message, context) ->
+                    Management.upgrade(context, "upgrade-requester", COUNTER,
+                                    Implementation.ofClass(SequenceCounterV2.class).withConfiguration("requester"))
+                            .whenComplete((result, error) -> {
+                                answeredOnDispatcher.set(Thread.currentThread().getName().equals("etherware-fifo"));
+                                if (error != null) {
+                                    answered.completeExceptionally(error);
+                                } else {
+                                    answered.complete(result);
+                                }
+                            }));
+            sendAndAwait(node, journal, 0, 1);
+            node.send(Profile.of("requester"), new io.etherware.core.message.Text("upgrade the counter"));
+            Await.until("the swap", () -> node.shell(COUNTER).logicType() == SequenceCounterV2.class);
+            sendAndAwait(node, journal, 1, 2);
+            UpgradeResult result = answered.get(30, TimeUnit.SECONDS);
+            assertEquals(SequenceCounterV2.class.getName(), result.newImplementation());
+            assertTrue(result.gapNs() > 0, "measured from the old logic's last message to the new one's first");
+            assertTrue(answeredOnDispatcher.get(), "a component's request completes on its dispatcher");
+            assertEquals(List.of("v1", "v2"), journal.entries().stream().map(Journal.Entry::version).toList());
+        }
+    }
+
     static void sendAndAwait(EtherwareNode node, Journal journal, long from, long to) {
         for (long i = from; i < to; i++) {
             node.send(COUNTER, new Seq(i));
