@@ -216,7 +216,7 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
      */
     public void swap(Profile profile, Supplier<? extends Component> factory) {
         await(swapAsync(profile, factory), "swap", profile);
-        log.info("node {}: component '{}' swapped to {}", core.nodeId(), profile, shell(profile).logicType().getName());
+        log.info("node {}: component '{}' swapped to its new logic", core.nodeId(), profile);
     }
 
     private void await(CompletableFuture<Void> operation, String what, Profile profile) {

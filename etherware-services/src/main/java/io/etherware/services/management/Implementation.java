@@ -16,7 +16,9 @@ import java.util.Objects;
  *       public constructor taking that one {@code String} (e.g. gains as text);</li>
  *   <li>it takes the old logic's state in {@link Component#restore}, which may check
  *       {@code state.schemaVersion()} to convert an old layout; throwing there rolls the upgrade
- *       back, and the old logic resumes.</li>
+ *       back, and the old logic resumes. {@code restore} and {@code onStart} run inside the swap,
+ *       on a dispatcher, while the component's messages wait: keep them short and put slow
+ *       preparation in the constructor, which runs before the swap on the service's worker.</li>
  * </ul>
  * The node constructs one instance off its dispatchers before the swap, and uses the constructor
  * again for later restarts by the component's supervision policy.

@@ -41,20 +41,26 @@ import org.slf4j.Logger;
  *       worker thread; the dispatcher is free again at once.</li>
  *   <li>On the worker: resolve the component, load and check the class (from the class path or
  *       an allowlisted jar, see {@link Implementation}) and construct its first instance.</li>
- *   <li>{@link Kernel#swapAsync(Profile, java.util.function.Supplier, java.util.function.LongConsumer)}:
- *       at the component's next message boundary, on whichever thread holds it, the kernel
- *       snapshots the old logic, restores the state into the new one, starts it and swaps it in;
- *       messages arriving meanwhile wait and are then delivered in order, exactly once. If the
- *       snapshot, {@code restore} or {@code onStart} throws, the old logic resumes and the answer
- *       is {@link Reason#ROLLED_BACK} with the cause.</li>
+ *   <li>Back on the service's dispatcher (the worker sends the loaded logic to the service as a
+ *       local message carrying the request's QoS, so the swap starts at the request's priority,
+ *       paper Section VI-C1):
+ *       {@link Kernel#swapAsync(Profile, java.util.function.Supplier, java.util.function.LongConsumer)}
+ *       without waiting for it. At the component's next message boundary the kernel snapshots the
+ *       old logic, restores the state into the new one ({@code restore} sees the state's
+ *       {@code schemaVersion()}), starts it and swaps it in; messages arriving meanwhile wait and
+ *       are then delivered in order, exactly once. If the snapshot, {@code restore} or
+ *       {@code onStart} throws, the old logic resumes and the answer is {@link Reason#ROLLED_BACK}
+ *       with the cause.</li>
  *   <li>The answer waits (without blocking anything) for the new logic's first message, at most
- *       {@link ManagementConfig#firstMessageWaitNs()}, to report the swap gap.</li>
+ *       {@link ManagementConfig#firstMessageWaitNs()} after loading, to report the swap gap; it is
+ *       assembled and sent on the worker.</li>
  * </ol>
  *
  * <p>Threading: {@link #onMessage} runs on a dispatcher and never blocks or loads code there.
- * Loading, and the continuations of the swap, run on one worker thread per service, so upgrades
- * are loaded one at a time. The swap itself runs on the managed component's dispatcher when it is
- * busy, or on the worker when it is idle.
+ * Loading and answering run on one worker thread per service, so upgrades are loaded one at a
+ * time. The swap runs where the kernel puts it: on the service's dispatcher if the component is
+ * between messages, else on the component's dispatcher right after its current message. Either
+ * way the new logic's {@code restore} and {@code onStart} run on a dispatcher and should be quick.
  */
 public final class ManagementService implements Component {
 

@@ -28,7 +28,11 @@ import java.util.function.Supplier;
  * the test suite; run it as a main:
  *
  * <pre>
- * java -cp ... io.etherware.services.management.UpgradeGapHarness [fifo|rt] [classpath|jar] [repetitions]
+ * ./mvnw -q -pl etherware-services -am test-compile dependency:build-classpath \
+ *     -Dmdep.outputFile=/tmp/upgrade-cp.txt -Dmdep.includeScope=test
+ * java --enable-native-access=ALL-UNNAMED \
+ *     -cp etherware-services/target/test-classes:etherware-services/target/classes:$(cat /tmp/upgrade-cp.txt) \
+ *     io.etherware.services.management.UpgradeGapHarness [fifo|rt|rt-fifo] [classpath|jar] [repetitions]
  * </pre>
  *
  * {@code classpath} alternates between two warmed-up classes on the class path; {@code jar} loads
