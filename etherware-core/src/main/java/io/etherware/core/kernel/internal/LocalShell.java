@@ -293,8 +293,12 @@ public final class LocalShell implements Shell {
         }
         Component current = logic;
         LongConsumer probe = firstHandlingProbe;
+        long probeStartNs = 0;
         if (probe != null) {
+            // Read here, inside the gate, not the dispatcher's take time: that may precede the
+            // end of the swap for a job taken while the swap was finishing.
             firstHandlingProbe = null;
+            probeStartNs = kernel.clock().nanoTime();
         }
         try {
             current.onMessage(message, context);
@@ -309,7 +313,7 @@ public final class LocalShell implements Shell {
         lastHandlingEndNs = endNs;
         LAST_HANDLING_NS.setRelease(this, endNs - nowNs);
         if (probe != null) {
-            tellFirstHandling(probe, nowNs);
+            tellFirstHandling(probe, probeStartNs);
         }
     }
 
