@@ -26,6 +26,7 @@ import java.util.List;
 import java.util.Map;
 import java.util.concurrent.ExecutionException;
 import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicLong;
 import java.util.concurrent.locks.LockSupport;
 import java.util.function.Supplier;
 import java.util.stream.LongStream;
@@ -64,16 +65,14 @@ class UpgradeTest {
     void shouldLoseDuplicateOrReorderNoMessageWhenUpgradedUnderA1kHzStream(String schedulerName) throws Exception {
         String name = "stream-" + schedulerName;
         Journal journal = Journal.create(name);
-        int total = 1_500;
         try (var node = node("upgrade-" + schedulerName, scheduler(schedulerName), journal, name)) {
-            Thread sender = startStream(node, total);
+            var stream = new Stream(node);
             Await.until("the stream is flowing", () -> journal.size() >= 300);
 
             UpgradeResult result = Management.upgrade(node, node.nodeId(), COUNTER,
                             Implementation.ofClass(SequenceCounterV2.class).withConfiguration(name))
                     .get(30, TimeUnit.SECONDS);
-            assertTrue(sender.isAlive(), "the upgrade happened while the stream was running");
-            sender.join();
+            int total = stream.finish(300);
             Await.until("every message handled", () -> journal.size() == total);
 
             List<Journal.Entry> entries = journal.entries();
@@ -147,9 +146,8 @@ class UpgradeTest {
                         }
                         """));
         Journal journal = Journal.create("broken");
-        int total = 600;
         try (var node = node("upgrade-broken", FifoScheduler::new, journal, "broken")) {
-            Thread sender = startStream(node, total);
+            var stream = new Stream(node);
             Await.until("the stream is flowing", () -> journal.size() >= 100);
             var failure = assertInstanceOf(ManagementException.class, assertFailed(Management.upgrade(node,
                     node.nodeId(), COUNTER, Implementation.fromJar(jar, "broken.CounterV3").withConfiguration("broken"))));
@@ -158,8 +156,7 @@ class UpgradeTest {
             assertTrue(failure.getMessage().contains(SequenceCounter.class.getName() + " serves on"),
                     failure.getMessage());
 
-            assertTrue(sender.isAlive(), "the upgrade failed while the stream was running");
-            sender.join();
+            int total = stream.finish(100);
             Await.until("every message handled", () -> journal.size() == total);
             assertExactlyOnceInOrder(journal.entries(), total);
             assertTrue(journal.entries().stream().allMatch(entry -> entry.version().equals("v1")), "the old logic served");
@@ -284,15 +281,35 @@ class UpgradeTest {
     }
 
     /** Sends {@code total} sequence numbers at 1 kHz from a thread of its own (absolute release times). */
-    static Thread startStream(EtherwareNode node, int total) {
-        return Thread.ofPlatform().name("sender-1kHz").start(() -> {
-            long nextNs = System.nanoTime();
-            for (long i = 0; i < total; i++) {
-                node.send(COUNTER, new Seq(i), QoS.periodic(Criticality.MIDDLE, PERIOD_NS));
-                nextNs += PERIOD_NS;
-                LockSupport.parkNanos(nextNs - System.nanoTime());
-            }
-        });
+    /**
+     * A 1 kHz stream of sequence numbers that runs until {@link Stream#finish} says how many more
+     * to send, so that a slow machine cannot end the stream before the upgrade has happened.
+     */
+    static final class Stream {
+        private static final long MAX_MESSAGES = 60_000;
+        private final AtomicLong sent = new AtomicLong();
+        private final AtomicLong limit = new AtomicLong(MAX_MESSAGES);
+        private final Thread sender;
+
+        Stream(EtherwareNode node) {
+            sender = Thread.ofPlatform().name("sender-1kHz").start(() -> {
+                long nextNs = System.nanoTime();
+                for (long i = 0; i < limit.get(); i++) {
+                    node.send(COUNTER, new Seq(i), QoS.periodic(Criticality.MIDDLE, PERIOD_NS));
+                    sent.set(i + 1);
+                    nextNs += PERIOD_NS;
+                    LockSupport.parkNanos(nextNs - System.nanoTime());
+                }
+            });
+        }
+
+        /** Sends {@code more} messages after the ones already sent, then stops; returns the total. */
+        int finish(int more) throws InterruptedException {
+            assertTrue(sender.isAlive(), "the stream was still running when the upgrade ended");
+            limit.set(sent.get() + more);
+            sender.join();
+            return Math.toIntExact(sent.get());
+        }
     }
 
     /** Every sequence number once, in order, and the count in the state never restarted. */
