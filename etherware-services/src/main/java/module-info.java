@@ -2,4 +2,6 @@
 module io.etherware.services {
     requires transitive io.etherware.core;
     requires transitive io.etherware.rt;
+
+    exports io.etherware.services.notifier;
 }
