@@ -62,6 +62,16 @@ public record TickSubscribe(String name, Profile target, Criticality criticality
                 backPressure);
     }
 
+    public TickSubscribe withMaxLatenessNs(long newMaxLatenessNs) {
+        return new TickSubscribe(name, target, criticality, periodNs, deadlineNs, wcetNs, firstReleaseNs,
+                newMaxLatenessNs, backPressure);
+    }
+
+    public TickSubscribe withBackPressure(boolean enabled) {
+        return new TickSubscribe(name, target, criticality, periodNs, deadlineNs, wcetNs, firstReleaseNs,
+                maxLatenessNs, enabled);
+    }
+
     public TickSubscribe withDeadlineNs(long newDeadlineNs) {
         return new TickSubscribe(name, target, criticality, periodNs, newDeadlineNs, wcetNs, firstReleaseNs,
                 maxLatenessNs, backPressure);
@@ -101,5 +111,4 @@ public record TickSubscribe(String name, Profile target, Criticality criticality
         }
         return subscription.withWcetNs(wcetNs).withBackPressure(backPressure);
     }
-
 }

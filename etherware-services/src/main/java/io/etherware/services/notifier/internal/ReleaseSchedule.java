@@ -108,6 +108,17 @@ public final class ReleaseSchedule {
     }
 
     private void release(SubscriptionState state, long nowNs) {
+        sending = state;
+        try {
+            decide(state, nowNs);
+        } finally {
+            // Published before 'sending' clears: a reader that waited for us sees the whole outcome.
+            state.publishProgress();
+            sending = null;
+        }
+    }
+
+    private void decide(SubscriptionState state, long nowNs) {
         long periodNs = state.periodNs();
         long sequence = state.nextSequence();
         long releaseNs = state.nextReleaseNs();
@@ -125,14 +136,9 @@ public final class ReleaseSchedule {
             }
         }
         state.advancePast(sequence);
-        sending = state;
-        try {
-            // Read after publishing 'sending': a canceller or retargeter that missed us waits for us.
-            if (!state.isCancelled()) {
-                send(state, sequence, releaseNs, periodNs);
-            }
-        } finally {
-            sending = null;
+        // Read after publishing 'sending': a canceller or retargeter that missed us waits for us.
+        if (!state.isCancelled()) {
+            send(state, sequence, releaseNs, periodNs);
         }
     }
 

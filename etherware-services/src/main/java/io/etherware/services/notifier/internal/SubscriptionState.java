@@ -138,6 +138,10 @@ public final class SubscriptionState {
     void advancePast(long sequence) {
         nextSequence = sequence + 1;
         nextReleaseNs = periodNs > 0 ? t0Ns + nextSequence * periodNs : Long.MAX_VALUE;
+    }
+
+    /** Makes the position on the grid readable, once the release's outcome is counted. */
+    void publishProgress() {
         publishedNextSequence.setRelease(nextSequence);
     }
 
