@@ -37,7 +37,11 @@ import org.slf4j.LoggerFactory;
  * periodNs)}: the scheduled release {@code t0 + sequence * periodNs} on the node's monotonic
  * clock, so a receiver can measure its own lateness. Release times are absolute and computed from
  * the sequence, so they never drift. A release that cannot be honoured is skipped and counted,
- * never made up with a burst of Ticks (the rule is on {@link ReleaseSchedule}).
+ * never made up with a burst of Ticks: one the thread reaches after the next release is already
+ * due or {@link Subscription#maxLatenessNs()} late (default half a period), one whose target does
+ * not resolve, and, with {@link Subscription#backPressure()}, one whose local receiver has not
+ * finished a single message since the previous Tick. {@link #stats(String)} counts each kind and
+ * records the lateness (send time minus release) of every Tick sent.
  *
  * <p>One platform thread serves every subscription from a priority queue of next releases. It
  * runs at the OS priority of {@link NotifierConfig#threadPolicy()} (default SCHED_FIFO 81, above
@@ -328,6 +332,7 @@ public final class Notifier implements AutoCloseable {
     }
 
     private void run() {
+        schedule.claimThread();
         configureThread();
         try {
             while (running) {

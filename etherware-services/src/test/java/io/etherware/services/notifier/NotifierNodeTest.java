@@ -211,9 +211,6 @@ class NotifierNodeTest {
             NotifierReply negative = ask(node, TickSubscribe.periodic(Criticality.HIGH, -5).to(CONTROLLER));
             assertFalse(negative.accepted());
             assertTrue(negative.reason().contains("periodNs=-5"), negative.reason());
-            NotifierReply noTarget = ask(node, new TickSubscribe("x", null, Criticality.HIGH, PERIOD_NS, 0, 0, null, 0,
-                    true));
-            assertTrue(noTarget.accepted(), "from outside, the node's own profile is the sender: " + noTarget);
             NotifierReply lateness = ask(node, TickSubscribe.periodic(Criticality.HIGH, PERIOD_NS).to(CONTROLLER)
                     .named("y").withMaxLatenessNs(2 * PERIOD_NS));
             assertFalse(lateness.accepted());

@@ -37,6 +37,8 @@ final class RecordingKernel implements Kernel {
     /** Receivers that consume every Tick at once (their counter moves on send). */
     private final Map<Profile, FakeShell> autoConsume = new ConcurrentHashMap<>();
 
+    private volatile boolean refuseSends;
+
     RecordingKernel(NodeClock clock) {
         this.clock = clock;
     }
@@ -79,8 +81,16 @@ final class RecordingKernel implements Kernel {
         return sent.size();
     }
 
+    /** Makes {@link #send} throw, as a kernel that is not started does. */
+    void refuseSends(boolean refuse) {
+        refuseSends = refuse;
+    }
+
     @Override
     public synchronized void send(Message message) {
+        if (refuseSends) {
+            throw new IllegalStateException("node 'test' is not started: call start() before sending");
+        }
         sent.add(message);
         sentAtNs.add(clock.nanoTime());
         FakeShell shell = autoConsume.get(message.profile());

@@ -96,6 +96,21 @@ class ReleaseScheduleTest {
     }
 
     @Test
+    void shouldCountTicksTheKernelRefusesAndKeepReleasing() {
+        kernel.addReceiver(RECEIVER, true);
+        SubscriptionState state = add(periodic("loop", RECEIVER));
+        kernel.refuseSends(true);
+        fireAt(0);
+        fireAt(1);
+        kernel.refuseSends(false);
+        fireAt(2);
+
+        assertEquals(List.of(2L), sentSequences());
+        assertEquals(2, state.stats().skippedUndeliverable());
+        assertEquals(3, state.stats().nextSequence());
+    }
+
+    @Test
     void shouldSendToTheNewTargetFromTheNextReleaseOnKeepingTheSequence() {
         kernel.addReceiver(RECEIVER, true);
         kernel.addReceiver(STANDBY, true);

@@ -11,6 +11,7 @@ import io.etherware.core.time.NodeClock;
 import java.util.Comparator;
 import java.util.PriorityQueue;
 import java.util.concurrent.locks.LockSupport;
+import java.util.function.Consumer;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -63,9 +64,13 @@ public final class ReleaseSchedule {
         this.sender = sender;
     }
 
+    /** Called once by the Notifier thread before it serves: {@link #awaitNotSending} must not wait for itself. */
+    public void claimThread() {
+        owner = Thread.currentThread();
+    }
+
     /** Notifier thread: schedules a new subscription. */
     public void add(SubscriptionState state) {
-        owner = Thread.currentThread();
         if (!state.isCancelled()) {
             queue.add(state);
         }
@@ -82,8 +87,7 @@ public final class ReleaseSchedule {
      *
      * @param finished called with each subscription that will not release again (a fired one-shot)
      */
-    public long fireDue(java.util.function.Consumer<SubscriptionState> finished) {
-        owner = Thread.currentThread();
+    public long fireDue(Consumer<SubscriptionState> finished) {
         while (true) {
             SubscriptionState state = queue.peek();
             if (state == null) {
@@ -137,8 +141,19 @@ public final class ReleaseSchedule {
         }
         state.advancePast(sequence);
         // Read after publishing 'sending': a canceller or retargeter that missed us waits for us.
-        if (!state.isCancelled()) {
+        if (state.isCancelled()) {
+            return;
+        }
+        try {
             send(state, sequence, releaseNs, periodNs);
+        } catch (RuntimeException e) {
+            // The node is not started, or a route or the registry threw: count it and run on; one
+            // failing release must not stop the thread that serves every subscription.
+            state.rememberReceiver(null, 0);
+            if (state.recordUndeliverable()) {
+                LOG.warn("notifier {}: subscription '{}': Tick #{} to '{}' failed: {}; further failures are counted"
+                        + " until a Tick goes out", sender, state.name(), sequence, state.target(), e.toString(), e);
+            }
         }
     }
 
@@ -167,19 +182,9 @@ public final class ReleaseSchedule {
             state.rememberReceiver(null, 0);
         }
         long sendNs = clock.nanoTime();
-        var tick = new Message(target, sender, clock.epochNanos(), state.subscription().qos(),
+        var tick = new Message(target, sender, clock.epochNanos(), state.qos(),
                 new Tick(releaseNs, sequence, periodNs), kernel.newMessageId(), null);
-        try {
-            kernel.send(tick);
-        } catch (RuntimeException e) {
-            // The node is not started, or a route threw past the kernel: count it, run on.
-            state.rememberReceiver(null, 0);
-            if (state.recordUndeliverable()) {
-                LOG.warn("notifier {}: subscription '{}': the kernel refused Tick #{} to '{}': {}; further refusals"
-                        + " are counted until a Tick goes out", sender, state.name(), sequence, target, e.toString());
-            }
-            return;
-        }
+        kernel.send(tick);
         state.recordSent(sendNs - releaseNs);
         if (state.endUndeliverableEpisode()) {
             LOG.info("notifier {}: subscription '{}' delivers again to '{}' from release #{}", sender, state.name(),

@@ -1,6 +1,7 @@
 package io.etherware.services.notifier.internal;
 
 import io.etherware.core.message.Profile;
+import io.etherware.core.message.QoS;
 import io.etherware.services.notifier.Subscription;
 import io.etherware.services.notifier.SubscriptionStats;
 import java.util.concurrent.atomic.AtomicLong;
@@ -147,6 +148,10 @@ public final class SubscriptionState {
 
     boolean isFinished() {
         return nextReleaseNs == Long.MAX_VALUE;
+    }
+
+    QoS qos() {
+        return subscription.qos();
     }
 
     long maxLatenessNs() {
