@@ -26,14 +26,17 @@ import org.junit.jupiter.api.Test;
 
 /**
  * The Notifier on a real node with real threads and the real clock: subscriptions by message and
- * by Java call, a stalled receiver, runtime changes. Outcomes are asserted with generous margins;
- * the Notifier thread runs at SCHED_OTHER here except in the priority test, where it only sleeps.
+ * by Java call, a stalled receiver, runtime changes. Outcomes are asserted with generous margins.
+ * The Notifier thread runs at SCHED_OTHER, except where a test needs it on time on a loaded box
+ * (the stall tests, the default-priority test): there it has its default SCHED_FIFO 81 and only
+ * sleeps, never spins.
  */
 class NotifierNodeTest {
 
     private static final long PERIOD_NS = TimeUnit.MILLISECONDS.toNanos(10);
     private static final long WAIT_MS = 20_000;
     private static final NotifierConfig CONFIG = NotifierConfig.defaults().withThreadPolicy(ThreadPolicy.NON_REALTIME);
+    private static final NotifierConfig REALTIME = NotifierConfig.defaults();
     private static final Profile CONTROLLER = Profile.of("controller", "car", "1");
 
     @Test
@@ -74,7 +77,7 @@ class NotifierNodeTest {
     @Test
     void shouldSkipAndCountReleasesInsteadOfQueueingABurstWhenTheReceiverStalls() throws Exception {
         try (var node = EtherwareNode.builder().nodeId("n1").build()) {
-            Notifier notifier = Notifier.install(node, CONFIG);
+            Notifier notifier = Notifier.install(node, REALTIME);
             var receiver = new Receiver();
             receiver.stallOnTick = 3;
             receiver.stallMs = 200;
@@ -89,7 +92,9 @@ class NotifierNodeTest {
                     "no Tick released during the stall waited for the receiver: first after it " + afterStall.getFirst()
                             + ", stall ended at " + stallEndNs);
             SubscriptionStats stats = notifier.unsubscribe("loop").orElseThrow();
-            assertTrue(stats.skippedBusy() >= 10, "the releases during a 200 ms stall at 10 ms are skipped: " + stats);
+            assertTrue(stats.skippedBusy() + stats.skippedLate() >= 10,
+                    "the releases during a 200 ms stall at 10 ms are skipped and counted: " + stats);
+            assertTrue(stats.skippedBusy() > 0, "skipped for the busy receiver: " + stats);
             Await.until(() -> receiver.ticks.size() == stats.ticksSent(), WAIT_MS,
                     () -> "every Tick sent to be received: " + receiver.ticks.size() + " of " + stats.ticksSent());
             assertAccountsForEveryRelease(stats);
@@ -99,7 +104,7 @@ class NotifierNodeTest {
     @Test
     void shouldQueueABurstForAStalledReceiverWhenBackPressureIsOff() throws Exception {
         try (var node = EtherwareNode.builder().nodeId("n1").build()) {
-            Notifier notifier = Notifier.install(node, CONFIG);
+            Notifier notifier = Notifier.install(node, REALTIME);
             var receiver = new Receiver();
             receiver.stallOnTick = 3;
             receiver.stallMs = 200;
@@ -134,21 +139,22 @@ class NotifierNodeTest {
                     Subscription.periodic("loop", CONTROLLER, Criticality.HIGH, PERIOD_NS));
             Await.until(() -> first.ticks.size() >= 5, WAIT_MS, () -> first.ticks.size() + " Ticks at the first");
             notifier.retarget("loop", standby);
-            int atFirst = first.ticks.size();
             Await.until(() -> second.ticks.size() >= 5, WAIT_MS, () -> second.ticks.size() + " Ticks at the second");
-            assertEquals(atFirst, first.ticks.size(), "no Tick to the old target after retarget returned");
             long lastAtFirst = first.ticks.getLast().tick().sequence();
             Tick firstAtSecond = second.ticks.getFirst().tick();
-            assertTrue(firstAtSecond.sequence() > lastAtFirst, "the sequence continues");
+            assertTrue(firstAtSecond.sequence() > lastAtFirst, "every Tick after the switch goes to the new target,"
+                    + " and the sequence continues: last at the first #" + lastAtFirst + ", first at the second "
+                    + firstAtSecond);
             assertEquals(added.firstReleaseNs() + firstAtSecond.sequence() * PERIOD_NS, firstAtSecond.releaseNs(),
                     "on the same grid");
 
             SubscriptionStats last = notifier.unsubscribe("loop").orElseThrow();
-            int atSecond = second.ticks.size();
+            Await.until(() -> first.ticks.size() + second.ticks.size() == last.ticksSent(), WAIT_MS,
+                    () -> "every Tick sent to arrive: " + (first.ticks.size() + second.ticks.size()) + " of "
+                            + last.ticksSent());
             Thread.sleep(5 * PERIOD_NS / 1_000_000);
-            assertEquals(atSecond, second.ticks.size(), "no Tick after unsubscribe returned");
+            assertEquals(last.ticksSent(), first.ticks.size() + second.ticks.size(), "no Tick after unsubscribe");
             assertEquals(standby, last.subscription().target());
-            assertEquals(atFirst + atSecond, last.ticksSent(), "every Tick sent was received");
             assertTrue(notifier.stats("loop").isEmpty());
             assertTrue(notifier.unsubscribe("loop").isEmpty());
         }
@@ -245,6 +251,20 @@ class NotifierNodeTest {
                 assertEquals("thread priority", grant.refusals().getFirst().feature());
             }
             assertTrue(notifier.isRunning(), "refused or not, it runs");
+        }
+    }
+
+    @Test
+    void shouldRunOnAndTickWhenThePlatformRefusesWhatWasAsked() {
+        var kernel = new RecordingKernel(io.etherware.core.time.NodeClock.system());
+        kernel.addReceiver(CONTROLLER, true);
+        // CPU 1023 does not exist: the affinity request is refused (EINVAL, or ENOSYS off Linux).
+        var config = CONFIG.withCpus(io.etherware.rt.platform.CpuSet.of(1023));
+        try (var notifier = new Notifier(kernel, config).start()) {
+            ThreadGrant grant = notifier.threadGrant().orElseThrow();
+            assertEquals("cpu affinity", grant.refusals().getFirst().feature(), grant.toLine());
+            notifier.subscribe(Subscription.periodic("loop", CONTROLLER, Criticality.HIGH, PERIOD_NS));
+            Await.until(() -> kernel.sentCount() >= 3, WAIT_MS, () -> kernel.sentCount() + " Ticks sent");
         }
     }
 
