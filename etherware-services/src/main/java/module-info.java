@@ -4,4 +4,5 @@ module io.etherware.services {
     requires transitive io.etherware.rt;
 
     exports io.etherware.services.management;
+    exports io.etherware.services.notifier;
 }
