@@ -1,0 +1,17 @@
+package io.etherware.services.network.internal;
+
+import io.etherware.core.message.Message;
+
+/**
+ * A message waiting to go to a peer, with the number of nodes that relayed it on its way here.
+ *
+ * @param message the message
+ * @param hops    0 when it was sent on this node, else the relays it went through
+ */
+record Outgoing(Message message, int hops) {
+
+    /** Its criticality as an index, least critical first. */
+    int level() {
+        return message.qos().criticality().ordinal();
+    }
+}
