@@ -79,11 +79,11 @@ class NetworkTopologyTest {
             c.node.add(DUP, () -> (message, context) -> context.reply(message, new Text("from c")));
             assertTrue(a.net.awaitResolvable(DUP, Duration.ofSeconds(30)));
             b.node.add(DUP, () -> (message, context) -> context.reply(message, new Text("from b")));
-            Await.until("a routes dup to b", () -> a.net.peer("b").orElseThrow().profiles().contains(DUP));
+            Await.until("a routes dup to b", () -> routesTo(a, "b", DUP));
             assertEquals(new Text("from b"), a.node.requestBlocking(DUP, new Text("?")).contents());
 
             b.node.remove(DUP);
-            Await.until("a routes dup to c", () -> a.net.peer("c").orElseThrow().profiles().contains(DUP));
+            Await.until("a routes dup to c", () -> routesTo(a, "c", DUP));
             assertEquals(new Text("from c"), a.node.requestBlocking(DUP, new Text("?")).contents());
         }
     }
@@ -105,6 +105,10 @@ class NetworkTopologyTest {
                     && a.node.registry().resolve(DUP) instanceof Endpoint.Remote);
             assertEquals(new Text("from b"), a.node.requestBlocking(DUP, new Text("?")).contents());
         }
+    }
+
+    private static boolean routesTo(TestNode from, String nodeId, Profile profile) {
+        return from.net.peer(nodeId).map(peer -> peer.profiles().contains(profile)).orElse(false);
     }
 
     private static void awaitQuietly(CountDownLatch latch) {

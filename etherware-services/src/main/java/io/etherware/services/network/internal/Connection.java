@@ -31,6 +31,7 @@ final class Connection implements Runnable {
     private static final long CLOSE_GRACE_MS = 500;
     /** Most messages a writer takes in one turn. */
     private static final int BATCH = 64;
+    private static final int DIRECT_BUDGET_MAX_BYTES = 64 * 1024;
 
     private final Engine engine;
     private final Socket socket;
@@ -41,6 +42,8 @@ final class Connection implements Runnable {
     private FrameReader reader;
     private FrameWriter writer;
     private int peerMaxFrameBytes;
+    /** Unacknowledged bytes below which a sender may write directly without ever blocking. */
+    private int directBudgetBytes;
     private volatile Thread readerThread;
     private volatile Thread writerThread;
     private volatile boolean closing;
@@ -76,6 +79,7 @@ final class Connection implements Runnable {
         this.dialer = dialer;
         this.remote = String.valueOf(socket.getRemoteSocketAddress());
         this.lastWriteNs = engine.nowNs();
+        this.nextProbeNs = lastWriteNs;
     }
 
     // ---------------------------------------------------------------- the reader thread
@@ -127,6 +131,8 @@ final class Connection implements Runnable {
             dialer.identified(hello.nodeId());
         }
         peerMaxFrameBytes = Math.min(hello.maxFrameBytes(), engine.config().maxFrameBytes());
+        // A quarter of the send buffer: the kernel counts its own overhead against the rest.
+        directBudgetBytes = Math.min(DIRECT_BUDGET_MAX_BYTES, socket.getSendBufferSize() / 4);
         Peer known = engine.peer(hello.nodeId());
         peer = known;
         writer.resume(known.resumeState());
@@ -234,10 +240,14 @@ final class Connection implements Runnable {
                 if (turn == null) {
                     return;
                 }
-                write(turn);
-                if (turn.isLast()) {
-                    socket.shutdownOutput();
-                    return;
+                try {
+                    write(turn);
+                    if (turn.isLast()) {
+                        socket.shutdownOutput();
+                        return;
+                    }
+                } finally {
+                    peer.endTurn();
                 }
             }
         } catch (IOException e) {
@@ -303,6 +313,11 @@ final class Connection implements Runnable {
         List<String> refusals = null;
         List<Outgoing> refused = null;
         for (Outgoing outgoing : fresh) {
+            if (outgoing.xml() != null) { // encoded by its sender, checked against the frame limit
+                encoded.add(outgoing);
+                xml.add(outgoing.xml());
+                continue;
+            }
             String problem;
             try {
                 byte[] document = engine.codec().encode(outgoing.message());
@@ -337,6 +352,27 @@ final class Connection implements Runnable {
         }
         engine.counters().sent.add(assigned.size());
         return !assigned.isEmpty();
+    }
+
+    /**
+     * Writes one message frame on the calling thread, which owns the output meanwhile (see
+     * {@link Peer#enqueue}).
+     */
+    void writeDirect(InFlight entry) throws IOException {
+        long ackNow = peer.inboundCount();
+        writer.data(entry.seq(), ackNow, entry.outgoing().hops(), entry.xml());
+        writer.flush();
+        lastAckSent = ackNow;
+        lastWriteNs = engine.nowNs();
+        engine.counters().sent.increment();
+    }
+
+    int peerMaxFrameBytes() {
+        return peerMaxFrameBytes;
+    }
+
+    int directBudgetBytes() {
+        return directBudgetBytes;
     }
 
     // ---------------------------------------------------------------- writer requests (under peer.lock)

@@ -233,8 +233,15 @@ public final class Engine {
         Peer peer = connection.peer();
         Peer.Activation activation = peer.activate(connection, hello, theirs);
         if (!activation.accepted()) {
-            connection.close(closed ? CloseReason.SHUTDOWN : CloseReason.DUPLICATE, "node '" + peer.nodeId
-                    + "' is connected already; keeping the connection dialed by '" + lowerId(peer.nodeId) + "'");
+            if (closed) {
+                connection.close(CloseReason.SHUTDOWN, "node '" + nodeId + "' is closing its network messenger");
+            } else if (peer.isConnected()) {
+                connection.close(CloseReason.DUPLICATE, "node '" + peer.nodeId + "' is connected already;"
+                        + " keeping the connection dialed by '" + lowerId(peer.nodeId) + "'");
+            } else {
+                connection.close(CloseReason.IO_ERROR, "node '" + peer.nodeId + "' expired during the handshake;"
+                        + " redial");
+            }
             return false;
         }
         counters.opened.increment();
@@ -272,6 +279,15 @@ public final class Engine {
             log.debug("node {}: closed {}: {}: {}", nodeId, connection, reason, detail);
         } else {
             log.info("node {}: closed {}: {}: {}", nodeId, connection, reason, detail);
+        }
+    }
+
+    /** Closes a connection off the calling thread (a sender must not wait for the close). */
+    void closeLater(Connection connection, CloseReason reason, String detail) {
+        try {
+            control.execute(() -> connection.close(reason, detail));
+        } catch (java.util.concurrent.RejectedExecutionException e) {
+            // The messenger is closing and closes every connection itself.
         }
     }
 
@@ -445,6 +461,7 @@ public final class Engine {
                                 + " reporting {} waiting messages as undeliverable", nodeId, peer.nodeId,
                                 TimeUnit.NANOSECONDS.toMillis(config.peerDownGraceNs()), lost.size());
                         routes.forget(peer);
+                        peers.remove(peer.nodeId, peer);
                         for (Outgoing each : lost) {
                             lost(each.message(), "node '" + peer.nodeId + "' has been unreachable for over "
                                     + TimeUnit.NANOSECONDS.toMillis(config.peerDownGraceNs()) + " ms");

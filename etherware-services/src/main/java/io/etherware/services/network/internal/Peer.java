@@ -2,8 +2,10 @@ package io.etherware.services.network.internal;
 
 import io.etherware.core.message.Criticality;
 import io.etherware.core.message.Message;
+import io.etherware.core.message.MessageFormatException;
 import io.etherware.services.network.CloseReason;
 import java.util.ArrayDeque;
+import java.io.IOException;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.concurrent.TimeUnit;
@@ -41,11 +43,21 @@ final class Peer {
     private final ArrayDeque<InFlight> inFlight = new ArrayDeque<>();
     private long streamId;
     private long nextSeq;
+    /** Encoded bytes of the messages in flight: bounds what a direct write can find in the socket. */
+    private long inFlightBytes;
+    /** Someone (the writer thread, or a sender writing directly) owns the active connection's output. */
+    private volatile boolean writerBusy;
+    /** The writer has work but waits for a direct write to give the output back. */
+    private boolean writerWaitsForToken;
+    /** The queue's size, readable without the lock as a hint. */
+    private volatile int queuedHint;
     private volatile long ackedCount;
     private volatile Connection active;
     private long remoteIncarnation;
     private long downSinceNs;
     private boolean expired;
+    /** Expired and removed from the messenger's peers: a later connection gets a new Peer. */
+    private boolean retired;
     private boolean closed;
 
     // Guarded by inboundLock; inboundNext is read without it by writers (piggybacked acks).
@@ -63,9 +75,13 @@ final class Peer {
     // ---------------------------------------------------------------- sending
 
     /**
-     * Queues a message for this peer. Never blocks: a full queue evicts a less critical message
-     * or, when there is none, drops a NONE or LOW message (counted) or refuses a MIDDLE or HIGH
-     * one by throwing, which the kernel turns into an undeliverable notice to its sender.
+     * Takes a message for this peer without ever blocking. When the connection is idle (nothing
+     * queued, nothing being written, little unacknowledged) the calling thread encodes and writes
+     * it itself: the socket's buffer has room for it (everything acknowledged has left it), and a
+     * thread hand-off is saved. Otherwise the message is queued for the writer: a full queue
+     * evicts a less critical message or, when there is none, drops a NONE or LOW message
+     * (counted) or refuses a MIDDLE or HIGH one by throwing, which the kernel turns into an
+     * undeliverable notice to its sender.
      */
     void enqueue(Message message) {
         int hops = ConnectionThread.hopsOfCurrentSend();
@@ -73,8 +89,11 @@ final class Peer {
             throw new IllegalStateException("message " + message.messageId() + " was already relayed " + (hops - 1)
                     + " times (maxHops=" + engine.config().maxHops() + "): the nodes' routes disagree");
         }
-        var outgoing = new Outgoing(message, hops);
-        OutboundQueue.Outcome outcome;
+        Connection direct = active;
+        byte[] xml = direct != null && queuedHint == 0 && !writerBusy ? encode(message, direct) : null;
+        var outgoing = new Outgoing(message, hops, xml);
+        OutboundQueue.Outcome outcome = null;
+        InFlight written = null;
         lock.lock();
         try {
             if (closed) {
@@ -84,12 +103,26 @@ final class Peer {
                 throw new IllegalStateException("node '" + nodeId + "' is unreachable: disconnected for more than "
                         + TimeUnit.NANOSECONDS.toMillis(engine.config().peerDownGraceNs()) + " ms");
             }
-            outcome = queue.offer(outgoing);
-            if (!(outcome instanceof OutboundQueue.Outcome.Full)) {
-                work.signal();
+            if (xml != null && active == direct && !writerBusy && queue.isEmpty()
+                    && inFlight.size() < engine.config().windowMessages()
+                    && inFlightBytes + xml.length <= direct.directBudgetBytes()) {
+                writerBusy = true;
+                written = new InFlight(nextSeq++, outgoing, xml);
+                inFlight.addLast(written);
+                inFlightBytes += xml.length;
+            } else {
+                outcome = queue.offer(outgoing);
+                queuedHint = queue.size();
+                if (!(outcome instanceof OutboundQueue.Outcome.Full)) {
+                    work.signal();
+                }
             }
         } finally {
             lock.unlock();
+        }
+        if (written != null) {
+            writeDirect(direct, written);
+            return;
         }
         switch (outcome) {
             case OutboundQueue.Outcome.Evicted evicted -> engine.dropped(evicted.evicted().message(), nodeId,
@@ -104,6 +137,54 @@ final class Peer {
             }
             default -> { }
         }
+    }
+
+    /** The message's XML for {@code connection}, or an exception the kernel reports to the sender. */
+    private byte[] encode(Message message, Connection connection) {
+        byte[] xml;
+        try {
+            xml = engine.codec().encode(message);
+        } catch (MessageFormatException e) {
+            throw new IllegalStateException("message " + message.messageId() + " does not encode: " + e.getMessage(), e);
+        }
+        if (xml.length + Frame.DATA_OVERHEAD_BYTES > connection.peerMaxFrameBytes()) {
+            throw new IllegalStateException("message " + message.messageId() + " is a frame of "
+                    + (xml.length + Frame.DATA_OVERHEAD_BYTES) + " bytes, over the " + connection.peerMaxFrameBytes()
+                    + " bytes node '" + nodeId + "' accepts");
+        }
+        return xml;
+    }
+
+    private void writeDirect(Connection connection, InFlight entry) {
+        try {
+            connection.writeDirect(entry);
+        } catch (IOException e) {
+            // Kept in flight: the next connection sends it again, or its sender hears it is lost.
+            engine.closeLater(connection, CloseReason.IO_ERROR, "writing to node '" + nodeId + "' failed: " + e);
+        } finally {
+            endTurn();
+        }
+    }
+
+    /** Whoever owned the output gives it back; a writer waiting for it may take its turn. */
+    void endTurn() {
+        lock.lock();
+        try {
+            writerBusy = false;
+            if (writerWaitsForToken) {
+                // Only then: waking an idle writer after every direct write would cost a thread
+                // switch per message.
+                writerWaitsForToken = false;
+                work.signalAll();
+            }
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    private void awaitToken() throws InterruptedException {
+        writerWaitsForToken = true;
+        work.await();
     }
 
     // ---------------------------------------------------------------- connections
@@ -134,7 +215,7 @@ final class Peer {
         synchronized (inboundLock) {
             lock.lock();
             try {
-                if (closed) {
+                if (closed || retired) {
                     return new Activation(false, candidate, List.of(), false);
                 }
                 Connection current = active;
@@ -153,15 +234,14 @@ final class Peer {
                         throw new ProtocolException(CloseReason.SEQUENCE_ERROR, "the peer claims " + theirs.receivedCount()
                                 + " messages of stream " + Long.toHexString(streamId) + ", only " + nextSeq + " were sent");
                     }
-                    while (!inFlight.isEmpty() && inFlight.peekFirst().seq() < theirs.receivedCount()) {
-                        inFlight.pollFirst();
-                    }
+                    releaseInFlightBelow(theirs.receivedCount());
                     ackedCount = theirs.receivedCount();
                     candidate.resend(List.copyOf(inFlight));
                 } else {
                     // The peer does not know our stream: what it did not acknowledge is of unknown fate.
                     lost = List.copyOf(inFlight);
                     inFlight.clear();
+                    inFlightBytes = 0;
                     nextSeq = 0;
                     ackedCount = 0;
                     candidate.resend(List.of());
@@ -224,18 +304,28 @@ final class Peer {
         try {
             while (true) {
                 if (active != connection) {
-                    return connection.takeBye();
+                    if (writerBusy) {
+                        awaitToken();
+                        continue;
+                    }
+                    WriterTurn last = connection.takeBye();
+                    writerBusy = last != null;
+                    return last;
                 }
                 boolean sendable = !queue.isEmpty() && inFlight.size() < window;
-                if (connection.hasRequests() || sendable) {
-                    break;
-                }
-                long waitNs = connection.heartbeatDueNs() - engine.nowNs();
-                if (waitNs <= 0) {
+                if (!connection.hasRequests() && !sendable) {
+                    long waitNs = connection.heartbeatDueNs() - engine.nowNs();
+                    if (waitNs > 0) {
+                        work.awaitNanos(waitNs);
+                        continue;
+                    }
                     connection.requestHeartbeat();
-                    break;
                 }
-                work.awaitNanos(waitNs);
+                if (writerBusy) {
+                    awaitToken(); // a sender is writing directly; it signals when done
+                    continue;
+                }
+                break;
             }
             WriterTurn turn = connection.takeRequests(batch);
             int room = Math.min(batch, window - inFlight.size());
@@ -246,6 +336,8 @@ final class Peer {
                 }
                 turn.fresh.add(next);
             }
+            queuedHint = queue.size();
+            writerBusy = true;
             return turn;
         } finally {
             lock.unlock();
@@ -261,6 +353,7 @@ final class Peer {
         try {
             if (active != connection) {
                 queue.pushBack(encoded);
+                queuedHint = queue.size();
                 work.signalAll();
                 return null;
             }
@@ -268,11 +361,18 @@ final class Peer {
             for (int i = 0; i < encoded.size(); i++) {
                 var entry = new InFlight(nextSeq++, encoded.get(i), xml.get(i));
                 inFlight.addLast(entry);
+                inFlightBytes += entry.xml().length;
                 assigned.add(entry);
             }
             return assigned;
         } finally {
             lock.unlock();
+        }
+    }
+
+    private void releaseInFlightBelow(long count) {
+        while (!inFlight.isEmpty() && inFlight.peekFirst().seq() < count) {
+            inFlightBytes -= inFlight.pollFirst().xml().length;
         }
     }
 
@@ -290,11 +390,13 @@ final class Peer {
                 throw new ProtocolException(CloseReason.SEQUENCE_ERROR, "acknowledgement of " + count
                         + " messages, only " + nextSeq + " were sent");
             }
-            while (!inFlight.isEmpty() && inFlight.peekFirst().seq() < count) {
-                inFlight.pollFirst();
-            }
+            int window = engine.config().windowMessages();
+            boolean windowWasFull = inFlight.size() >= window;
+            releaseInFlightBelow(count);
             ackedCount = count;
-            work.signal();
+            if (windowWasFull && inFlight.size() < window && !queue.isEmpty()) {
+                work.signal(); // the writer waited for room in the window
+            }
         } finally {
             lock.unlock();
         }
@@ -312,6 +414,7 @@ final class Peer {
                 InFlight entry = each.next();
                 if (entry.seq() == seq) {
                     each.remove();
+                    inFlightBytes -= entry.xml().length;
                     return entry.outgoing();
                 }
             }
@@ -363,8 +466,9 @@ final class Peer {
     // ---------------------------------------------------------------- housekeeping
 
     /**
-     * If the peer has been down longer than the grace period: stop accepting messages for it, and
-     * return what waited (to report to the senders). Null if it is not newly expired.
+     * If the peer has been down longer than the grace period: stop accepting messages for it and
+     * retire it (the messenger forgets it; a later connection starts afresh), and return what
+     * waited, to report to the senders. Null if it is not newly expired.
      */
     List<Outgoing> expireIfDown(long nowNs) {
         lock.lock();
@@ -373,6 +477,7 @@ final class Peer {
                 return null;
             }
             expired = true;
+            retired = true;
             return abandonAll();
         } finally {
             lock.unlock();
@@ -397,7 +502,9 @@ final class Peer {
             lost.add(entry.outgoing());
         }
         lost.addAll(queue.drain());
+        queuedHint = 0;
         inFlight.clear();
+        inFlightBytes = 0;
         // A fresh stream: the peer, when it comes back, must not expect the abandoned numbers.
         streamId = engine.newStreamId();
         nextSeq = 0;

@@ -21,7 +21,7 @@ class OutboundQueueTest {
 
     private static Outgoing message(Criticality criticality) {
         return new Outgoing(new Message(Profile.of("x"), null, 0, QoS.of(criticality), new Text(criticality.name()),
-                new MessageId("a", sequence++), null), 0);
+                new MessageId("a", sequence++), null), 0, null);
     }
 
     private static List<Outgoing> drain(OutboundQueue queue) {
