@@ -182,10 +182,14 @@ public final class LoopbackHarness {
         }
 
         @Override
-        public void close() throws Exception {
+        public void close() throws IOException {
             client.close();
             server.close();
-            echo.join(1_000);
+            try {
+                echo.join(1_000);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
         }
     }
 }

@@ -9,7 +9,6 @@ import java.io.IOException;
 import java.io.InputStream;
 import java.net.Socket;
 import java.net.SocketTimeoutException;
-import java.util.ArrayDeque;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.concurrent.TimeUnit;
@@ -51,17 +50,8 @@ final class Connection implements Runnable {
     /** Guarded by this: {@link #close} runs once. */
     private boolean closed;
 
-    // Writer requests, guarded by peer.lock.
-    private boolean ackRequested;
-    private byte[] announce;
-    private boolean heartbeatRequested;
-    private boolean probeRequested;
-    private final ArrayDeque<long[]> timeReplies = new ArrayDeque<>();
-    private Frame.Reject reject;
-    private Frame.Bye bye;
-    private boolean byeTaken;
-    private List<InFlight> resend = List.of();
-    private int resendIndex;
+    /** What the writer is asked to send besides messages; guarded by the peer's lock. */
+    final WriterRequests requests = new WriterRequests();
 
     private volatile long lastWriteNs;
     private volatile long lastAckSent;
@@ -182,7 +172,7 @@ final class Connection implements Runnable {
         } catch (MalformedMessageException e) {
             peer.lock.lock();
             try {
-                reject = new Frame.Reject(e.seq, e.getMessage());
+                requests.reject(new Frame.Reject(e.seq, e.getMessage()));
             } finally {
                 peer.lock.unlock();
             }
@@ -377,76 +367,14 @@ final class Connection implements Runnable {
 
     // ---------------------------------------------------------------- writer requests (under peer.lock)
 
-    boolean hasRequests() {
-        return ackRequested || announce != null || heartbeatRequested || probeRequested || !timeReplies.isEmpty()
-                || reject != null || resendIndex < resend.size();
-    }
-
     long heartbeatDueNs() {
         return lastWriteNs + engine.config().heartbeatIntervalNs();
-    }
-
-    void requestHeartbeat() {
-        heartbeatRequested = true;
-    }
-
-    void resend(List<InFlight> entries) {
-        resend = entries;
-        resendIndex = 0;
-    }
-
-    void announce(byte[] body) {
-        announce = body;
-    }
-
-    WriterTurn takeRequests(int batch) {
-        var turn = new WriterTurn();
-        turn.ack = ackRequested;
-        turn.announce = announce;
-        turn.heartbeat = heartbeatRequested;
-        turn.probe = probeRequested;
-        turn.timeReplies.addAll(timeReplies);
-        turn.reject = reject;
-        ackRequested = false;
-        announce = null;
-        heartbeatRequested = false;
-        probeRequested = false;
-        timeReplies.clear();
-        reject = null;
-        if (resendIndex < resend.size()) {
-            int end = Math.min(resend.size(), resendIndex + batch);
-            turn.resend = resend.subList(resendIndex, end);
-            resendIndex = end;
-        }
-        return turn;
-    }
-
-    /** The last turn of a closing connection: its REJECT and BYE, once; else null. */
-    WriterTurn takeBye() {
-        if (bye == null || byeTaken) {
-            return null;
-        }
-        byeTaken = true;
-        var turn = new WriterTurn();
-        turn.ack = true; // what this node's kernel has, so the peer does not report it lost
-        turn.reject = reject;
-        turn.bye = bye;
-        reject = null;
-        return turn;
-    }
-
-    void requestBye(CloseReason reason, String text) {
-        if (bye == null) {
-            bye = new Frame.Bye(reason.code(), text);
-        }
     }
 
     private void requestTimeReply(long t1, long t2) {
         peer.lock.lock();
         try {
-            if (timeReplies.size() < 16) { // a peer flooding requests gets some answered
-                timeReplies.addLast(new long[] {t1, t2});
-            }
+            requests.timeReply(t1, t2);
             peer.work.signal();
         } finally {
             peer.lock.unlock();
@@ -454,11 +382,11 @@ final class Connection implements Runnable {
     }
 
     void requestAck() {
-        request(() -> ackRequested = true);
+        request(requests::requestAck);
     }
 
     void requestProbe() {
-        request(() -> probeRequested = true);
+        request(requests::requestProbe);
     }
 
     private void request(Runnable flag) {
@@ -530,7 +458,7 @@ final class Connection implements Runnable {
             owner.lock.lock();
             try {
                 if (sayBye) {
-                    requestBye(reason, detail);
+                    requests.requestBye(reason, detail);
                 }
                 owner.work.signalAll();
             } finally {
@@ -549,8 +477,9 @@ final class Connection implements Runnable {
             }
         } else if (writing == null && current == readerThread && sayBye && writer != null) {
             try {
-                if (reject != null) {
-                    writer.reject(reject.seq(), reject.reason());
+                Frame.Reject refusal = requests.pendingReject(); // this thread set it, before any writer
+                if (refusal != null) {
+                    writer.reject(refusal.seq(), refusal.reason());
                 }
                 writer.bye(reason.code(), detail);
                 writer.flush();

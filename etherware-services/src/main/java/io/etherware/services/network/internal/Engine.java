@@ -1,9 +1,7 @@
 package io.etherware.services.network.internal;
 
 import io.etherware.core.codec.MessageCodec;
-import io.etherware.core.kernel.Endpoint;
 import io.etherware.core.kernel.Kernel;
-import io.etherware.core.kernel.ProfileRegistry;
 import io.etherware.core.kernel.ProfileResolutionException;
 import io.etherware.core.kernel.RemoteRoute;
 import io.etherware.core.kernel.RequestFailed;
@@ -27,7 +25,6 @@ import java.util.Comparator;
 import java.util.List;
 import java.util.Optional;
 import java.util.Set;
-import java.util.TreeSet;
 import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.ConcurrentLinkedQueue;
 import java.util.concurrent.CopyOnWriteArrayList;
@@ -68,18 +65,13 @@ public final class Engine {
     private final List<Dialer> dialers = new CopyOnWriteArrayList<>();
     private final ConcurrentLinkedQueue<Profile> toReconcile = new ConcurrentLinkedQueue<>();
     private final ScheduledThreadPoolExecutor control;
-    private final ProfileRegistry.Listener registryListener = this::onRegistryChanged;
     private final Object stateChanged = new Object();
     private final AtomicLong overflowLogged = new AtomicLong();
     private ServerSocket server;
     private Thread acceptor;
     private volatile boolean closed;
 
-    // This node's profiles, announced to every peer; guarded by announceLock.
-    private final Object announceLock = new Object();
-    private final TreeSet<Profile> localProfiles = new TreeSet<>(Comparator.comparing(Profile::toString));
-    private long announceVersion;
-    private volatile byte[] announceBody;
+    private final Announcer announcer;
 
     public Engine(Kernel kernel, NetworkConfig config) {
         this.kernel = kernel;
@@ -93,22 +85,14 @@ public final class Engine {
             thread.setDaemon(true);
             return thread;
         });
-        this.announceBody = FrameWriter.announceBody(0, List.of(kernel.profile()));
+        this.announcer = new Announcer(kernel, peers.values(), toReconcile);
     }
 
     // ---------------------------------------------------------------- lifecycle
 
     /** Binds, starts accepting and dialing, and announces this node's profiles. */
     public void start() throws IOException {
-        kernel.registry().addListener(registryListener);
-        synchronized (announceLock) {
-            for (Profile profile : kernel.registry().profiles()) {
-                if (isLocal(profile)) {
-                    localProfiles.add(profile);
-                }
-            }
-            publishAnnounce();
-        }
+        announcer.start();
         server = config.connectionFactory().listen(config.listenAddress());
         acceptor = new Thread(this::acceptLoop, "etherware-net-" + nodeId + "-accept");
         acceptor.setDaemon(true);
@@ -145,7 +129,7 @@ public final class Engine {
             sleepMs(1);
         }
         closed = true;
-        kernel.registry().removeListener(registryListener);
+        announcer.stop();
         control.shutdownNow();
         try {
             server.close();
@@ -376,62 +360,8 @@ public final class Engine {
         };
     }
 
-    // ---------------------------------------------------------------- this node's profiles
-
-    /** Registry listener: keep the announced set current and tell the route table what moved. */
-    private void onRegistryChanged(Profile profile, Endpoint before, Endpoint after) {
-        if (before instanceof Endpoint.Remote was && was.route() instanceof RouteTable.ProfileRoute
-                && !(after instanceof Endpoint.Remote now && now.route() == was.route())
-                || before instanceof Endpoint.Local && after == null) {
-            // Our route was displaced, or a local component left (a peer may announce its profile):
-            // the route table settles it on the control thread (it cannot be called back from here).
-            toReconcile.add(profile);
-        }
-        boolean wasLocal = before instanceof Endpoint.Local;
-        boolean isLocal = after instanceof Endpoint.Local;
-        if (wasLocal == isLocal) {
-            return;
-        }
-        synchronized (announceLock) {
-            if (isLocal) {
-                localProfiles.add(profile);
-            } else {
-                localProfiles.remove(profile);
-            }
-            publishAnnounce();
-        }
-    }
-
-    private void publishAnnounce() {
-        var all = new ArrayList<Profile>(localProfiles.size() + 1);
-        all.add(kernel.profile());
-        all.addAll(localProfiles);
-        byte[] body = FrameWriter.announceBody(++announceVersion, all);
-        announceBody = body;
-        for (Peer peer : peers.values()) {
-            peer.lock.lock();
-            try {
-                Connection active = peer.active();
-                if (active != null) {
-                    active.announce(body);
-                    peer.work.signal();
-                }
-            } finally {
-                peer.lock.unlock();
-            }
-        }
-    }
-
-    private boolean isLocal(Profile profile) {
-        try {
-            return kernel.registry().resolve(profile) instanceof Endpoint.Local;
-        } catch (ProfileResolutionException e) {
-            return false;
-        }
-    }
-
     byte[] announceBody() {
-        return announceBody;
+        return announcer.body();
     }
 
     // ---------------------------------------------------------------- the control thread

@@ -12,7 +12,7 @@ import java.util.List;
  */
 final class OutboundQueue {
 
-    private static final Criticality[] LEVELS = Criticality.values();
+    private static final int LEVELS = Criticality.values().length;
 
     /** What {@link #offer} did with an offered message. */
     sealed interface Outcome {
@@ -31,17 +31,17 @@ final class OutboundQueue {
         }
     }
 
-    private final ArrayDeque<Outgoing>[] levels;
+    private final List<ArrayDeque<Outgoing>> levels;
     private final int capacity;
     private int size;
 
-    @SuppressWarnings("unchecked")
     OutboundQueue(int capacity) {
         this.capacity = capacity;
-        this.levels = new ArrayDeque[LEVELS.length];
-        for (int i = 0; i < levels.length; i++) {
-            levels[i] = new ArrayDeque<>();
+        var byLevel = new java.util.ArrayList<ArrayDeque<Outgoing>>(LEVELS);
+        for (int i = 0; i < LEVELS; i++) {
+            byLevel.add(new ArrayDeque<>());
         }
+        this.levels = List.copyOf(byLevel);
     }
 
     /**
@@ -51,14 +51,14 @@ final class OutboundQueue {
     Outcome offer(Outgoing message) {
         int level = message.level();
         if (size < capacity) {
-            levels[level].addLast(message);
+            levels.get(level).addLast(message);
             size++;
             return Outcome.QUEUED;
         }
         for (int lower = 0; lower < level; lower++) {
-            if (!levels[lower].isEmpty()) {
-                Outgoing evicted = levels[lower].pollFirst();
-                levels[level].addLast(message);
+            if (!levels.get(lower).isEmpty()) {
+                Outgoing evicted = levels.get(lower).pollFirst();
+                levels.get(level).addLast(message);
                 return new Outcome.Evicted(evicted);
             }
         }
@@ -67,8 +67,8 @@ final class OutboundQueue {
 
     /** The most critical, oldest message, or null. */
     Outgoing poll() {
-        for (int level = levels.length - 1; level >= 0; level--) {
-            Outgoing message = levels[level].pollFirst();
+        for (int level = levels.size() - 1; level >= 0; level--) {
+            Outgoing message = levels.get(level).pollFirst();
             if (message != null) {
                 size--;
                 return message;
@@ -80,7 +80,7 @@ final class OutboundQueue {
     /** Puts back messages taken by {@link #poll} and not sent, ahead of the rest, in their order. */
     void pushBack(List<Outgoing> taken) {
         for (Outgoing message : taken.reversed()) {
-            levels[message.level()].addFirst(message);
+            levels.get(message.level()).addFirst(message);
             size++;
         }
     }
@@ -101,14 +101,5 @@ final class OutboundQueue {
 
     boolean isEmpty() {
         return size == 0;
-    }
-
-    /** Waiting messages of one level. */
-    int size(Criticality criticality) {
-        return levels[criticality.ordinal()].size();
-    }
-
-    static Criticality level(int ordinal) {
-        return LEVELS[ordinal];
     }
 }

@@ -236,7 +236,7 @@ final class Peer {
                     }
                     releaseInFlightBelow(theirs.receivedCount());
                     ackedCount = theirs.receivedCount();
-                    candidate.resend(List.copyOf(inFlight));
+                    candidate.requests.resend(List.copyOf(inFlight));
                 } else {
                     // The peer does not know our stream: what it did not acknowledge is of unknown fate.
                     lost = List.copyOf(inFlight);
@@ -244,19 +244,19 @@ final class Peer {
                     inFlightBytes = 0;
                     nextSeq = 0;
                     ackedCount = 0;
-                    candidate.resend(List.of());
+                    candidate.requests.resend(List.of());
                 }
                 if (theirs.streamId() != inboundStreamId) {
                     inboundStreamId = theirs.streamId();
                     inboundNext = 0;
                 }
                 if (loser != null) {
-                    loser.requestBye(CloseReason.DUPLICATE, "replaced by the connection dialed by '"
+                    loser.requests.requestBye(CloseReason.DUPLICATE, "replaced by the connection dialed by '"
                             + candidate.initiatorId() + "'");
                 }
                 active = candidate;
                 expired = false;
-                candidate.announce(engine.announceBody());
+                candidate.requests.announce(engine.announceBody());
                 work.signalAll();
                 return new Activation(true, loser, lost, restarted);
             } finally {
@@ -308,18 +308,18 @@ final class Peer {
                         awaitToken();
                         continue;
                     }
-                    WriterTurn last = connection.takeBye();
+                    WriterTurn last = connection.requests.takeBye();
                     writerBusy = last != null;
                     return last;
                 }
                 boolean sendable = !queue.isEmpty() && inFlight.size() < window;
-                if (!connection.hasRequests() && !sendable) {
+                if (!connection.requests.hasRequests() && !sendable) {
                     long waitNs = connection.heartbeatDueNs() - engine.nowNs();
                     if (waitNs > 0) {
                         work.awaitNanos(waitNs);
                         continue;
                     }
-                    connection.requestHeartbeat();
+                    connection.requests.requestHeartbeat();
                 }
                 if (writerBusy) {
                     awaitToken(); // a sender is writing directly; it signals when done
@@ -327,7 +327,7 @@ final class Peer {
                 }
                 break;
             }
-            WriterTurn turn = connection.takeRequests(batch);
+            WriterTurn turn = connection.requests.takeRequests(batch);
             int room = Math.min(batch, window - inFlight.size());
             while (turn.fresh.size() < room) {
                 Outgoing next = queue.poll();
@@ -512,14 +512,6 @@ final class Peer {
         return lost;
     }
 
-    boolean isExpired() {
-        lock.lock();
-        try {
-            return expired;
-        } finally {
-            lock.unlock();
-        }
-    }
 
     /** Waiting messages, and written ones not yet acknowledged. */
     int[] backlog() {
