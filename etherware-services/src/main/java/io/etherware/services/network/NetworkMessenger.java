@@ -1,5 +1,6 @@
 package io.etherware.services.network;
 
+import io.etherware.core.kernel.EtherwareNode;
 import io.etherware.core.kernel.Kernel;
 import io.etherware.core.kernel.RemoteRoute;
 import io.etherware.core.message.Profile;
@@ -41,10 +42,12 @@ import java.util.Optional;
  * node's clock by {@link #networkTime()}.
  *
  * <p>Threading contract: every method may be called from any thread. Sending through the routes
- * never blocks (it queues). The messenger runs on platform threads of its own: an acceptor, a
- * control thread, and a reader and a writer per connection, so a slow or dead peer holds up
- * nobody else. Start the node before the messenger (messages may arrive at once) and close the
- * messenger before the node.
+ * never blocks: on an idle connection the sending thread writes the frame itself (which the
+ * acknowledged-stream bookkeeping proves cannot block), otherwise it queues. The messenger runs
+ * on platform threads of its own: an acceptor, a control thread, and a reader and a writer per
+ * connection, so a slow or dead peer holds up nobody else. Start the node before the messenger
+ * (messages may arrive at once) and close the messenger before the node; a node that closes
+ * first closes its messenger too.
  */
 public final class NetworkMessenger implements AutoCloseable {
 
@@ -70,7 +73,13 @@ public final class NetworkMessenger implements AutoCloseable {
             throw new UncheckedIOException("node '" + kernel.nodeId() + "': cannot listen on "
                     + config.listenAddress() + ": " + e.getMessage(), e);
         }
-        return new NetworkMessenger(engine);
+        var messenger = new NetworkMessenger(engine);
+        if (kernel instanceof EtherwareNode node) {
+            // A node closed first takes its messenger along (off the closing thread).
+            node.closedFuture().thenRunAsync(messenger::close, task -> Thread.ofPlatform().daemon()
+                    .name("etherware-net-" + kernel.nodeId() + "-close").start(task));
+        }
+        return messenger;
     }
 
     /** The address this node accepts connections on (with the actual port if 0 was configured). */

@@ -113,6 +113,9 @@ public final class Engine {
     }
 
     public InetSocketAddress localAddress() {
+        if (server == null) {
+            throw new IllegalStateException("node '" + nodeId + "': the network messenger is not listening");
+        }
         return (InetSocketAddress) server.getLocalSocketAddress();
     }
 
@@ -131,10 +134,12 @@ public final class Engine {
         closed = true;
         announcer.stop();
         control.shutdownNow();
-        try {
-            server.close();
-        } catch (IOException e) {
-            log.debug("node {}: closing the server socket: {}", nodeId, e.toString());
+        if (server != null) {
+            try {
+                server.close();
+            } catch (IOException e) {
+                log.debug("node {}: closing the server socket: {}", nodeId, e.toString());
+            }
         }
         for (Connection connection : List.copyOf(connections)) {
             connection.close(CloseReason.SHUTDOWN, "node '" + nodeId + "' is closing its network messenger");
@@ -152,6 +157,7 @@ public final class Engine {
             Thread.currentThread().interrupt();
         }
         log.info("node {}: network messenger closed: {}", nodeId, stats());
+        signalStateChanged();
     }
 
     private boolean hasBacklog() {
