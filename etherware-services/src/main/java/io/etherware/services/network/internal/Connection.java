@@ -55,6 +55,12 @@ final class Connection implements Runnable {
 
     private volatile long lastWriteNs;
     private volatile long lastAckSent;
+    /** Bytes framed on this connection; written by whoever owns the output. */
+    private volatile long bytesWritten;
+    /** Where the last message frame written ends. */
+    private volatile long lastDataEndOffset;
+    /** Bytes the peer has certainly read: up to the last message frame, once all were acknowledged. */
+    private volatile long readByPeerOffset;
 
     // Control thread only.
     long nextProbeNs;
@@ -132,6 +138,7 @@ final class Connection implements Runnable {
             throw new ProtocolException(CloseReason.BAD_HANDSHAKE, "expected RESUME after HELLO, got "
                     + second.getClass().getSimpleName());
         }
+        bytesWritten = writer.bytes();
         Thread.currentThread().setName("etherware-net-" + engine.nodeId() + "-read-" + known.nodeId);
         activated = engine.activate(this, hello, theirs, helloArrivedEpochNs);
         socket.setSoTimeout((int) Math.max(1, TimeUnit.NANOSECONDS.toMillis(engine.config().heartbeatTimeoutNs())));
@@ -264,6 +271,9 @@ final class Connection implements Runnable {
             engine.counters().resent.increment();
             carriedAck = true;
         }
+        if (carriedAck) {
+            lastDataEndOffset = writer.bytes();
+        }
         if (!turn.fresh.isEmpty()) {
             carriedAck |= writeFresh(turn.fresh, ackNow);
         }
@@ -293,6 +303,7 @@ final class Connection implements Runnable {
             writer.bye(turn.bye.code(), turn.bye.text());
         }
         writer.flush();
+        bytesWritten = writer.bytes();
         lastWriteNs = engine.nowNs();
     }
 
@@ -340,6 +351,7 @@ final class Connection implements Runnable {
         for (InFlight entry : assigned) {
             writer.data(entry.seq(), ackNow, entry.outgoing().hops(), entry.xml());
         }
+        lastDataEndOffset = writer.bytes();
         engine.counters().sent.add(assigned.size());
         return !assigned.isEmpty();
     }
@@ -352,6 +364,8 @@ final class Connection implements Runnable {
         long ackNow = peer.inboundCount();
         writer.data(entry.seq(), ackNow, entry.outgoing().hops(), entry.xml());
         writer.flush();
+        lastDataEndOffset = writer.bytes();
+        bytesWritten = lastDataEndOffset;
         lastAckSent = ackNow;
         lastWriteNs = engine.nowNs();
         engine.counters().sent.increment();
@@ -361,8 +375,23 @@ final class Connection implements Runnable {
         return peerMaxFrameBytes;
     }
 
-    int directBudgetBytes() {
-        return directBudgetBytes;
+    /**
+     * Whether a sender may write {@code frameBytes} more directly: the bytes the peer may not have
+     * read yet (everything after the last message frame it acknowledged, control frames included)
+     * plus these stay within a quarter of the socket's send buffer, so the write cannot block
+     * even on a peer that stopped reading.
+     */
+    boolean fitsDirectWrite(int frameBytes) {
+        return bytesWritten - readByPeerOffset + frameBytes <= directBudgetBytes;
+    }
+
+    /**
+     * Every message frame written so far is acknowledged (peer's lock held): the peer has read
+     * the stream up to the last of them. A frame still being written ends later, so this errs
+     * on the safe side.
+     */
+    void allDataAcknowledged() {
+        readByPeerOffset = Math.max(readByPeerOffset, lastDataEndOffset);
     }
 
     // ---------------------------------------------------------------- writer requests (under peer.lock)

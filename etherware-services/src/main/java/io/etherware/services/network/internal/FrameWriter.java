@@ -20,6 +20,7 @@ final class FrameWriter {
     static final int MAX_STRING_BYTES = 0xFFFF;
 
     private final DataOutputStream out;
+    private long bytes;
 
     FrameWriter(OutputStream output) {
         this.out = new DataOutputStream(new BufferedOutputStream(output, BUFFER_BYTES));
@@ -113,9 +114,15 @@ final class FrameWriter {
         out.flush();
     }
 
+    /** Bytes framed on this connection so far, buffered or sent. */
+    long bytes() {
+        return bytes;
+    }
+
     private void begin(byte type, int bodyBytes) throws IOException {
         out.writeInt(1 + bodyBytes);
         out.writeByte(type);
+        bytes += 5L + bodyBytes;
     }
 
     private void string(byte[] utf8) throws IOException {

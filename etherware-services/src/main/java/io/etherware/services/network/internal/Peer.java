@@ -43,8 +43,6 @@ final class Peer {
     private final ArrayDeque<InFlight> inFlight = new ArrayDeque<>();
     private long streamId;
     private long nextSeq;
-    /** Encoded bytes of the messages in flight: bounds what a direct write can find in the socket. */
-    private long inFlightBytes;
     /** Someone (the writer thread, or a sender writing directly) owns the active connection's output. */
     private volatile boolean writerBusy;
     /** The writer has work but waits for a direct write to give the output back. */
@@ -103,13 +101,12 @@ final class Peer {
                 throw new IllegalStateException("node '" + nodeId + "' is unreachable: disconnected for more than "
                         + TimeUnit.NANOSECONDS.toMillis(engine.config().peerDownGraceNs()) + " ms");
             }
-            if (xml != null && active == direct && !writerBusy && queue.isEmpty()
+            if (xml != null && active == direct && !writerBusy && queue.isEmpty() && !direct.requests.hasResend()
                     && inFlight.size() < engine.config().windowMessages()
-                    && inFlightBytes + xml.length <= direct.directBudgetBytes()) {
+                    && direct.fitsDirectWrite(xml.length + Frame.DATA_OVERHEAD_BYTES)) {
                 writerBusy = true;
                 written = new InFlight(nextSeq++, outgoing, xml);
                 inFlight.addLast(written);
-                inFlightBytes += xml.length;
             } else {
                 outcome = queue.offer(outgoing);
                 queuedHint = queue.size();
@@ -241,7 +238,6 @@ final class Peer {
                     // The peer does not know our stream: what it did not acknowledge is of unknown fate.
                     lost = List.copyOf(inFlight);
                     inFlight.clear();
-                    inFlightBytes = 0;
                     nextSeq = 0;
                     ackedCount = 0;
                     candidate.requests.resend(List.of());
@@ -361,7 +357,6 @@ final class Peer {
             for (int i = 0; i < encoded.size(); i++) {
                 var entry = new InFlight(nextSeq++, encoded.get(i), xml.get(i));
                 inFlight.addLast(entry);
-                inFlightBytes += entry.xml().length;
                 assigned.add(entry);
             }
             return assigned;
@@ -372,7 +367,7 @@ final class Peer {
 
     private void releaseInFlightBelow(long count) {
         while (!inFlight.isEmpty() && inFlight.peekFirst().seq() < count) {
-            inFlightBytes -= inFlight.pollFirst().xml().length;
+            inFlight.pollFirst();
         }
     }
 
@@ -394,6 +389,9 @@ final class Peer {
             boolean windowWasFull = inFlight.size() >= window;
             releaseInFlightBelow(count);
             ackedCount = count;
+            if (inFlight.isEmpty()) {
+                connection.allDataAcknowledged();
+            }
             if (windowWasFull && inFlight.size() < window && !queue.isEmpty()) {
                 work.signal(); // the writer waited for room in the window
             }
@@ -414,7 +412,6 @@ final class Peer {
                 InFlight entry = each.next();
                 if (entry.seq() == seq) {
                     each.remove();
-                    inFlightBytes -= entry.xml().length;
                     return entry.outgoing();
                 }
             }
@@ -504,7 +501,6 @@ final class Peer {
         lost.addAll(queue.drain());
         queuedHint = 0;
         inFlight.clear();
-        inFlightBytes = 0;
         // A fresh stream: the peer, when it comes back, must not expect the abandoned numbers.
         streamId = engine.newStreamId();
         nextSeq = 0;

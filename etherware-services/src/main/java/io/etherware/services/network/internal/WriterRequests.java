@@ -33,6 +33,11 @@ final class WriterRequests {
                 || reject != null || resendIndex < resend.size();
     }
 
+    /** Messages of a resumed stream wait to be sent again: nothing newer may overtake them. */
+    boolean hasResend() {
+        return resendIndex < resend.size();
+    }
+
     void requestAck() {
         ackRequested = true;
     }
