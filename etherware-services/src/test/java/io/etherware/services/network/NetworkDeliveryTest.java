@@ -122,6 +122,7 @@ class NetworkDeliveryTest {
             assertEquals(0, sink.outOfOrder.get(), "in order, none twice");
             assertTrue(a.net.stats().connectionsOpened() >= 2, "a reconnected: " + a.net.stats());
             assertEquals(0, a.net.stats().undeliverable());
+            assertEquals(0, b.net.stats().badInputCloses(), "resent before anything newer: " + b.net.stats());
             // Nothing arrives after the count: no duplicate was delivered late.
             Thread.sleep(200);
             assertEquals(count, sink.received.get());

@@ -11,6 +11,7 @@ import io.etherware.core.message.Profile;
 import io.etherware.core.message.QoS;
 import io.etherware.core.message.Text;
 import java.time.Duration;
+import java.util.List;
 import java.util.concurrent.LinkedBlockingQueue;
 import java.util.concurrent.TimeUnit;
 import org.junit.jupiter.api.Test;
@@ -62,6 +63,41 @@ class NetworkMessengerTest {
             assertEquals(qos, arrived.qos());
             assertEquals(new Num(7), arrived.contents());
             assertEquals("a", arrived.messageId().nodeId());
+        }
+    }
+
+    @Test
+    void shouldRouteTheReplyToAComponentThatRequestsAsSoonAsItIsAdded() throws Exception {
+        int components = 50;
+        var replies = new LinkedBlockingQueue<Message>();
+        var failures = new LinkedBlockingQueue<Throwable>();
+        try (var b = TestNode.start("b", TestNode.config());
+             var a = TestNode.start("a", TestNode.config().peer(b.address()))) {
+            b.node.add(ECHO, () -> (message, context) -> context.reply(message, message.contents()));
+            assertTrue(a.net.awaitResolvable(ECHO, Duration.ofSeconds(30)));
+            for (int i = 0; i < components; i++) {
+                // The announcement of the new profile must reach b before the request does, or
+                // b cannot route the reply.
+                a.node.add(Profile.of("client", "i", Integer.toString(i)), () -> new Component() {
+                    @Override
+                    public void onStart(ComponentContext context) {
+                        context.request(ECHO, new Text(context.self().toString())).whenComplete((reply, error) -> {
+                            if (error != null) {
+                                failures.add(error);
+                            } else {
+                                replies.add(reply);
+                            }
+                        });
+                    }
+
+                    @Override
+                    public void onMessage(Message message, ComponentContext context) {
+                    }
+                });
+            }
+            Await.until("every component has its reply or failure", () -> replies.size() + failures.size() == components);
+            assertEquals(List.of(), List.copyOf(failures));
+            assertEquals(0, b.node.stats().undeliverable());
         }
     }
 }

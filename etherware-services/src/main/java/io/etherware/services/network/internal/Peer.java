@@ -101,7 +101,7 @@ final class Peer {
                 throw new IllegalStateException("node '" + nodeId + "' is unreachable: disconnected for more than "
                         + TimeUnit.NANOSECONDS.toMillis(engine.config().peerDownGraceNs()) + " ms");
             }
-            if (xml != null && active == direct && !writerBusy && queue.isEmpty() && !direct.requests.hasResend()
+            if (xml != null && active == direct && !writerBusy && queue.isEmpty() && !direct.requests.mustPrecedeMessages()
                     && inFlight.size() < engine.config().windowMessages()
                     && direct.fitsDirectWrite(xml.length + Frame.DATA_OVERHEAD_BYTES)) {
                 writerBusy = true;

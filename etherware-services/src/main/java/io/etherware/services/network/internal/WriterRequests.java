@@ -33,9 +33,13 @@ final class WriterRequests {
                 || reject != null || resendIndex < resend.size();
     }
 
-    /** Messages of a resumed stream wait to be sent again: nothing newer may overtake them. */
-    boolean hasResend() {
-        return resendIndex < resend.size();
+    /**
+     * Whether something waits that a new message must not overtake: messages of a resumed stream
+     * to send again (the peer expects them first), or an announcement (a request sent after a
+     * component was added must not reach the peer before the profile its reply goes to).
+     */
+    boolean mustPrecedeMessages() {
+        return announce != null || resendIndex < resend.size();
     }
 
     void requestAck() {
