@@ -324,7 +324,9 @@ final class Peer {
                 break;
             }
             WriterTurn turn = connection.requests.takeRequests(batch);
-            int room = Math.min(batch, window - inFlight.size());
+            // New messages only once every message to send again is out: the peer expects the
+            // stream in order.
+            int room = connection.requests.mustPrecedeMessages() ? 0 : Math.min(batch, window - inFlight.size());
             while (turn.fresh.size() < room) {
                 Outgoing next = queue.poll();
                 if (next == null) {
