@@ -218,12 +218,15 @@ public final class Engine {
     }
 
     /** After the handshake: make the connection the peer's, or close it as a duplicate. */
-    boolean activate(Connection connection, Frame.Hello hello, Frame.Resume theirs, long helloArrivedEpochNs)
-            throws ProtocolException {
+    boolean activate(Connection connection, Frame.Hello hello, Frame.Resume theirs, long helloArrivedEpochNs) {
         Peer peer = connection.peer();
         Peer.Activation activation = peer.activate(connection, hello, theirs);
         if (!activation.accepted()) {
-            if (closed) {
+            reportLost(activation.lost(), peer.nodeId, "the streams with node '" + peer.nodeId
+                    + "' disagreed; its fate is unknown");
+            if (activation.refusal() != null) {
+                connection.close(CloseReason.SEQUENCE_ERROR, activation.refusal());
+            } else if (closed) {
                 connection.close(CloseReason.SHUTDOWN, "node '" + nodeId + "' is closing its network messenger");
             } else if (peer.isConnected()) {
                 connection.close(CloseReason.DUPLICATE, "node '" + peer.nodeId + "' is connected already;"
@@ -248,10 +251,8 @@ public final class Engine {
             activation.loser().close(CloseReason.DUPLICATE, "replaced by the connection dialed by '"
                     + connection.initiatorId() + "'");
         }
-        for (InFlight entry : activation.lost()) {
-            lost(entry.outgoing().message(), "node '" + peer.nodeId + "' restarted before acknowledging it;"
-                    + " it may or may not have been handled");
-        }
+        reportLost(activation.lost(), peer.nodeId, "node '" + peer.nodeId + "' restarted before acknowledging it;"
+                + " it may or may not have been handled");
         signalStateChanged();
         return true;
     }
@@ -330,6 +331,13 @@ public final class Engine {
         } catch (RuntimeException e) {
             log.warn("node {}: could not tell '{}' that message {} is lost ({}): {}", nodeId, message.sender(),
                     message.messageId(), reason, e.toString());
+        }
+    }
+
+    /** Reports messages written to a peer whose fate is unknown. */
+    void reportLost(List<InFlight> entries, String peerId, String reason) {
+        for (InFlight entry : entries) {
+            lost(entry.outgoing().message(), reason);
         }
     }
 
