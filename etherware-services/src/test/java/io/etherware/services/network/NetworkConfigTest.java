@@ -60,4 +60,29 @@ class NetworkConfigTest {
             }
         }
     }
+
+    @Test
+    void shouldMakeEverySocketThroughTheConnectionFactory() throws Exception {
+        var listened = new java.util.concurrent.atomic.AtomicInteger();
+        var dialed = new java.util.concurrent.atomic.AtomicInteger();
+        ConnectionFactory counting = new ConnectionFactory() {
+            @Override
+            public java.net.ServerSocket listen(InetSocketAddress address) throws java.io.IOException {
+                listened.incrementAndGet();
+                return ConnectionFactory.plain().listen(address);
+            }
+
+            @Override
+            public java.net.Socket connect(InetSocketAddress address, int timeoutMs) throws java.io.IOException {
+                dialed.incrementAndGet();
+                return ConnectionFactory.plain().connect(address, timeoutMs);
+            }
+        };
+        try (var b = TestNode.start("b", TestNode.config().connectionFactory(counting));
+             var a = TestNode.start("a", TestNode.config().connectionFactory(counting).peer(b.address()))) {
+            assertTrue(a.net.awaitConnected("b", Duration.ofSeconds(30)));
+            assertEquals(2, listened.get());
+            assertEquals(1, dialed.get());
+        }
+    }
 }
