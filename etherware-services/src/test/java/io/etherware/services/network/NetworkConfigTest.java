@@ -54,8 +54,9 @@ class NetworkConfigTest {
                 var messenger = NetworkMessenger.start(b, NetworkConfig.builder().peer(taken).build());
                 assertTrue(first.awaitConnected("b", Duration.ofSeconds(30)));
                 b.close();
-                Await.until("closing node b closed its messenger", () -> !first.peer("b").orElseThrow().connected());
-                assertEquals(1, first.stats().closes(CloseReason.PEER_CLOSED));
+                Await.until("closing node b closed its messenger, which said BYE",
+                        () -> first.stats().closes(CloseReason.PEER_CLOSED) == 1);
+                assertTrue(!first.peer("b").orElseThrow().connected());
                 messenger.close(); // idempotent
             }
         }
