@@ -8,7 +8,10 @@ import io.etherware.core.kernel.RequestFailed;
 import io.etherware.core.kernel.Undeliverable;
 import io.etherware.core.message.Criticality;
 import io.etherware.core.message.Message;
+import io.etherware.core.message.MessageId;
 import io.etherware.core.message.Profile;
+import io.etherware.core.message.QoS;
+import io.etherware.core.message.Text;
 import io.etherware.services.network.CloseReason;
 import io.etherware.services.network.NetworkConfig;
 import io.etherware.services.network.NetworkStats;
@@ -92,6 +95,11 @@ public final class Engine {
 
     /** Binds, starts accepting and dialing, and announces this node's profiles. */
     public void start() throws IOException {
+        // The codec's first use builds its serializers (tens of milliseconds): pay that now, not
+        // on the first message of a control loop.
+        Message warmUp = new Message(kernel.profile(), kernel.profile(), kernel.clock().epochNanos(), QoS.NONE,
+                new Text("warm-up"), new MessageId(nodeId, 0), null);
+        config.codec().decode(config.codec().encode(warmUp));
         announcer.start();
         server = config.connectionFactory().listen(config.listenAddress());
         acceptor = new Thread(this::acceptLoop, "etherware-net-" + nodeId + "-accept");
