@@ -6,6 +6,7 @@ package io.etherware.services.network;
  * and counted, and the node and its other connections carry on.
  *
  * <p>Each reason has a fixed code on the wire (the BYE frame of {@code NETWORK-PROTOCOL.md}).
+ * Immutable.
  */
 public enum CloseReason {
     /** This node's messenger is closing. */

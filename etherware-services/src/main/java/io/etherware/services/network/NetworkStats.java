@@ -4,7 +4,7 @@ import java.util.Map;
 
 /**
  * Counters of a {@link NetworkMessenger}, read at one moment (each exact; not read atomically
- * together).
+ * together). Immutable; a snapshot.
  *
  * @param nodeId               this node
  * @param connectedPeers       peers with a connection now

@@ -182,6 +182,23 @@ class NetworkBadInputTest {
     }
 
     @Test
+    void shouldRefuseAPeerClaimingMessagesNeverSentAndStartTheStreamAfresh() throws Exception {
+        long firstStreamId;
+        try (var attacker = new RawPeer(b.address())) {
+            firstStreamId = attacker.handshakeClaiming("mallory", 0, 5);
+            RawPeer.Received bye = byeOf(attacker.readUntilClosed());
+            assertEquals(CloseReason.SEQUENCE_ERROR.code(), bye.byeCode());
+            assertTrue(bye.byeText().contains("claims 5 messages"), bye.byeText());
+        }
+        assertOnlyTheOffenderWasClosed(CloseReason.SEQUENCE_ERROR);
+        try (var again = new RawPeer(b.address())) {
+            long secondStreamId = again.handshakeClaiming("mallory", firstStreamId, 5);
+            assertTrue(secondStreamId != firstStreamId, "b starts its stream to mallory under a new id");
+            assertEquals(RawPeer.ANNOUNCE, again.read().type(), "the stale claim no longer matters: connected");
+        }
+    }
+
+    @Test
     void shouldDeliverAMessageFromAPeerThatFollowsTheDocument() throws Exception {
         try (var peer = new RawPeer(b.address())) {
             peer.handshake("mallory");

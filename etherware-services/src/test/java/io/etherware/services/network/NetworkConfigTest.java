@@ -54,10 +54,37 @@ class NetworkConfigTest {
                 var messenger = NetworkMessenger.start(b, NetworkConfig.builder().peer(taken).build());
                 assertTrue(first.awaitConnected("b", Duration.ofSeconds(30)));
                 b.close();
-                Await.until("closing node b closed its messenger", () -> !first.peer("b").orElseThrow().connected());
-                assertEquals(1, first.stats().closes(CloseReason.PEER_CLOSED));
+                Await.until("closing node b closed its messenger, which said BYE",
+                        () -> first.stats().closes().size() > 0);
+                assertEquals(1, first.stats().closes(CloseReason.PEER_CLOSED), first.stats().toString());
+                assertTrue(!first.peer("b").orElseThrow().connected());
                 messenger.close(); // idempotent
             }
+        }
+    }
+
+    @Test
+    void shouldMakeEverySocketThroughTheConnectionFactory() throws Exception {
+        var listened = new java.util.concurrent.atomic.AtomicInteger();
+        var dialed = new java.util.concurrent.atomic.AtomicInteger();
+        ConnectionFactory counting = new ConnectionFactory() {
+            @Override
+            public java.net.ServerSocket listen(InetSocketAddress address) throws java.io.IOException {
+                listened.incrementAndGet();
+                return ConnectionFactory.plain().listen(address);
+            }
+
+            @Override
+            public java.net.Socket connect(InetSocketAddress address, int timeoutMs) throws java.io.IOException {
+                dialed.incrementAndGet();
+                return ConnectionFactory.plain().connect(address, timeoutMs);
+            }
+        };
+        try (var b = TestNode.start("b", TestNode.config().connectionFactory(counting));
+             var a = TestNode.start("a", TestNode.config().connectionFactory(counting).peer(b.address()))) {
+            assertTrue(a.net.awaitConnected("b", Duration.ofSeconds(30)));
+            assertEquals(2, listened.get());
+            assertEquals(1, dialed.get());
         }
     }
 }

@@ -103,6 +103,23 @@ final class RawPeer implements AutoCloseable {
         expect(RESUME);
     }
 
+    /**
+     * A handshake that reads the node's RESUME first and then claims to have received
+     * {@code claimed} messages of stream {@code streamId} (0: the node's current stream); returns
+     * the node's stream id.
+     */
+    long handshakeClaiming(String nodeId, long streamId, long claimed) throws IOException {
+        hello(MAGIC, 1, nodeId);
+        expect(HELLO);
+        long nodeStreamId = java.nio.ByteBuffer.wrap(expect(RESUME).body()).getLong();
+        frame(RESUME, body(out -> {
+            out.writeLong(1);
+            out.writeLong(streamId == 0 ? nodeStreamId : streamId);
+            out.writeLong(claimed);
+        }));
+        return nodeStreamId;
+    }
+
     void data(long seq, String xml) throws IOException {
         frame(DATA, body(out -> {
             out.writeLong(seq);

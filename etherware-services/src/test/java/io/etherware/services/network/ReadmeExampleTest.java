@@ -23,7 +23,6 @@ class ReadmeExampleTest {
         // README example begins
         record Reading(double celsius) implements Contents {}
         ContentsTypes.shared().register("reading", Reading.class); // on every node: the wire name
-
         try (var plant = EtherwareNode.builder().nodeId("plant").build().start();
              var plantNet = NetworkMessenger.start(plant, NetworkConfig.builder().listen("127.0.0.1", 0).build());
              var control = EtherwareNode.builder().nodeId("control").build().start();

@@ -519,6 +519,14 @@ final class Connection implements Runnable {
         }
         if (current == readerThread && (reason.isBadInput() || reason == CloseReason.DUPLICATE)) {
             drainInput();
+        } else if (current != readerThread && writing != null && sayBye) {
+            // Let the reader read on until the peer, having read the BYE, closes its side: closing
+            // with unread input would reset the connection and could destroy the BYE.
+            try {
+                readerThread.join(CLOSE_GRACE_MS);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
         }
         try {
             socket.close();

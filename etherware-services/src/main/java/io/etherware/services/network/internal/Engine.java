@@ -8,7 +8,10 @@ import io.etherware.core.kernel.RequestFailed;
 import io.etherware.core.kernel.Undeliverable;
 import io.etherware.core.message.Criticality;
 import io.etherware.core.message.Message;
+import io.etherware.core.message.MessageId;
 import io.etherware.core.message.Profile;
+import io.etherware.core.message.QoS;
+import io.etherware.core.message.Text;
 import io.etherware.services.network.CloseReason;
 import io.etherware.services.network.NetworkConfig;
 import io.etherware.services.network.NetworkStats;
@@ -92,6 +95,11 @@ public final class Engine {
 
     /** Binds, starts accepting and dialing, and announces this node's profiles. */
     public void start() throws IOException {
+        // The codec's first use builds its serializers (tens of milliseconds): pay that now, not
+        // on the first message of a control loop.
+        Message warmUp = new Message(kernel.profile(), kernel.profile(), kernel.clock().epochNanos(), QoS.NONE,
+                new Text("warm-up"), new MessageId(nodeId, 0), null);
+        config.codec().decode(config.codec().encode(warmUp));
         announcer.start();
         server = config.connectionFactory().listen(config.listenAddress());
         acceptor = new Thread(this::acceptLoop, "etherware-net-" + nodeId + "-accept");
@@ -218,12 +226,15 @@ public final class Engine {
     }
 
     /** After the handshake: make the connection the peer's, or close it as a duplicate. */
-    boolean activate(Connection connection, Frame.Hello hello, Frame.Resume theirs, long helloArrivedEpochNs)
-            throws ProtocolException {
+    boolean activate(Connection connection, Frame.Hello hello, Frame.Resume theirs, long helloArrivedEpochNs) {
         Peer peer = connection.peer();
         Peer.Activation activation = peer.activate(connection, hello, theirs);
         if (!activation.accepted()) {
-            if (closed) {
+            reportLost(activation.lost(), peer.nodeId, "the streams with node '" + peer.nodeId
+                    + "' disagreed; its fate is unknown");
+            if (activation.refusal() != null) {
+                connection.close(CloseReason.SEQUENCE_ERROR, activation.refusal());
+            } else if (closed) {
                 connection.close(CloseReason.SHUTDOWN, "node '" + nodeId + "' is closing its network messenger");
             } else if (peer.isConnected()) {
                 connection.close(CloseReason.DUPLICATE, "node '" + peer.nodeId + "' is connected already;"
@@ -248,10 +259,8 @@ public final class Engine {
             activation.loser().close(CloseReason.DUPLICATE, "replaced by the connection dialed by '"
                     + connection.initiatorId() + "'");
         }
-        for (InFlight entry : activation.lost()) {
-            lost(entry.outgoing().message(), "node '" + peer.nodeId + "' restarted before acknowledging it;"
-                    + " it may or may not have been handled");
-        }
+        reportLost(activation.lost(), peer.nodeId, "node '" + peer.nodeId + "' restarted before acknowledging it;"
+                + " it may or may not have been handled");
         signalStateChanged();
         return true;
     }
@@ -330,6 +339,13 @@ public final class Engine {
         } catch (RuntimeException e) {
             log.warn("node {}: could not tell '{}' that message {} is lost ({}): {}", nodeId, message.sender(),
                     message.messageId(), reason, e.toString());
+        }
+    }
+
+    /** Reports messages written to a peer whose fate is unknown. */
+    void reportLost(List<InFlight> entries, String peerId, String reason) {
+        for (InFlight entry : entries) {
+            lost(entry.outgoing().message(), reason);
         }
     }
 

@@ -199,27 +199,31 @@ final class Peer {
     }
 
     /** The outcome of {@link #activate}. */
-    record Activation(boolean accepted, Connection loser, List<InFlight> lost, boolean restarted) {
+    /**
+     * @param refusal why the connection is refused for a protocol error, or null (a duplicate, or
+     *                the messenger closes)
+     */
+    record Activation(boolean accepted, Connection loser, List<InFlight> lost, boolean restarted, String refusal) {
     }
 
     /**
      * Makes {@code candidate}, handshaken, this peer's connection, unless a connection that wins
      * the one-connection rule is already in use. Resumes or restarts both streams.
      *
-     * @throws ProtocolException if the peer claims to have received messages never sent
+     * A peer claiming more of our stream than was sent is refused, and our stream starts afresh.
      */
-    Activation activate(Connection candidate, Frame.Hello hello, Frame.Resume theirs) throws ProtocolException {
+    Activation activate(Connection candidate, Frame.Hello hello, Frame.Resume theirs) {
         synchronized (inboundLock) {
             lock.lock();
             try {
                 if (closed || retired) {
-                    return new Activation(false, candidate, List.of(), false);
+                    return new Activation(false, candidate, List.of(), false, null);
                 }
                 Connection current = active;
                 Connection loser = null;
                 if (current != null && current != candidate) {
                     if (!candidate.isPreferredOver(current)) {
-                        return new Activation(false, candidate, List.of(), false);
+                        return new Activation(false, candidate, List.of(), false, null);
                     }
                     loser = current;
                 }
@@ -228,14 +232,18 @@ final class Peer {
                 List<InFlight> lost = List.of();
                 if (theirs.knownStreamId() == streamId) {
                     if (theirs.receivedCount() > nextSeq) {
-                        throw new ProtocolException(CloseReason.SEQUENCE_ERROR, "the peer claims " + theirs.receivedCount()
-                                + " messages of stream " + Long.toHexString(streamId) + ", only " + nextSeq + " were sent");
+                        // The streams disagree (a restart raced a second connection): start ours
+                        // afresh under a new id, which the peer adopts on the next connection.
+                        String refusal = "the peer claims " + theirs.receivedCount() + " messages of stream "
+                                + Long.toHexString(streamId) + ", only " + nextSeq + " were sent";
+                        return new Activation(false, candidate, resetStream(), false, refusal);
                     }
                     releaseInFlightBelow(theirs.receivedCount());
-                    ackedCount = theirs.receivedCount();
+                    ackedCount = Math.max(ackedCount, theirs.receivedCount());
                     candidate.requests.resend(List.copyOf(inFlight));
                 } else {
-                    // The peer does not know our stream: what it did not acknowledge is of unknown fate.
+                    // The peer does not know our stream: what it did not acknowledge is of unknown
+                    // fate; the peer starts our stream from 0 (it adopts its id from our RESUME).
                     lost = List.copyOf(inFlight);
                     inFlight.clear();
                     nextSeq = 0;
@@ -254,7 +262,7 @@ final class Peer {
                 expired = false;
                 candidate.requests.announce(engine.announceBody());
                 work.signalAll();
-                return new Activation(true, loser, lost, restarted);
+                return new Activation(true, loser, lost, restarted, null);
             } finally {
                 lock.unlock();
             }
@@ -378,27 +386,41 @@ final class Peer {
         if (count <= ackedCount) {
             return;
         }
+        List<InFlight> lost;
+        String error;
         lock.lock();
         try {
             if (active != connection) {
                 return;
             }
             if (count > nextSeq) {
-                throw new ProtocolException(CloseReason.SEQUENCE_ERROR, "acknowledgement of " + count
-                        + " messages, only " + nextSeq + " were sent");
-            }
-            int window = engine.config().windowMessages();
-            boolean windowWasFull = inFlight.size() >= window;
-            releaseInFlightBelow(count);
-            ackedCount = count;
-            if (inFlight.isEmpty()) {
-                connection.allDataAcknowledged();
-            }
-            if (windowWasFull && inFlight.size() < window && !queue.isEmpty()) {
-                work.signal(); // the writer waited for room in the window
+                error = "acknowledgement of " + count + " messages, only " + nextSeq + " were sent";
+                lost = resetStream();
+            } else {
+                error = null;
+                lost = List.of();
+                acknowledged(connection, count);
             }
         } finally {
             lock.unlock();
+        }
+        if (error != null) {
+            engine.reportLost(lost, nodeId, "the streams with node '" + nodeId + "' disagreed; its fate is unknown");
+            throw new ProtocolException(CloseReason.SEQUENCE_ERROR, error);
+        }
+    }
+
+    /** Releases the acknowledged messages (lock held). */
+    private void acknowledged(Connection connection, long count) {
+        int window = engine.config().windowMessages();
+        boolean windowWasFull = inFlight.size() >= window;
+        releaseInFlightBelow(count);
+        ackedCount = count;
+        if (inFlight.isEmpty()) {
+            connection.allDataAcknowledged();
+        }
+        if (windowWasFull && inFlight.size() < window && !queue.isEmpty()) {
+            work.signal(); // the writer waited for room in the window
         }
     }
 
@@ -497,13 +519,21 @@ final class Peer {
 
     private List<Outgoing> abandonAll() {
         var lost = new ArrayList<Outgoing>(inFlight.size() + queue.size());
-        for (InFlight entry : inFlight) {
+        for (InFlight entry : resetStream()) {
             lost.add(entry.outgoing());
         }
         lost.addAll(queue.drain());
         queuedHint = 0;
+        return lost;
+    }
+
+    /**
+     * Starts the outbound stream afresh under a new id (the peer, when it sees the id, must not
+     * expect the old numbers) and returns the unacknowledged messages, whose fate is unknown.
+     */
+    private List<InFlight> resetStream() {
+        List<InFlight> lost = List.copyOf(inFlight);
         inFlight.clear();
-        // A fresh stream: the peer, when it comes back, must not expect the abandoned numbers.
         streamId = engine.newStreamId();
         nextSeq = 0;
         ackedCount = 0;
