@@ -77,10 +77,10 @@ public final class CpuLoad implements AutoCloseable {
 
     /** Stops the threads and waits for them. Idempotent. */
     @Override
-    public void close() throws InterruptedException {
+    public void close() {
         running = false;
         for (Thread thread : threads) {
-            thread.join(5_000L);
+            SimThreads.join(thread, 5_000L);
         }
     }
 

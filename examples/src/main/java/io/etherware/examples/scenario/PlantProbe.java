@@ -125,7 +125,7 @@ public final class PlantProbe implements AutoCloseable {
 
     /** Stops sampling and waits up to a second for the thread. Idempotent. */
     @Override
-    public void close() throws InterruptedException {
+    public void close() {
         Thread sampling;
         synchronized (this) {
             running = false;
@@ -133,7 +133,7 @@ public final class PlantProbe implements AutoCloseable {
         }
         if (sampling != null) {
             LockSupport.unpark(sampling);
-            sampling.join(1_000L);
+            SimThreads.join(sampling, 1_000L);
         }
     }
 }

@@ -69,6 +69,18 @@ public final class SimThreads {
         return true;
     }
 
+    /**
+     * Waits up to {@code timeoutMs} for {@code thread} to end; an interrupt ends the wait and stays
+     * set for the caller (for {@code close()} methods, which must not throw it).
+     */
+    public static void join(Thread thread, long timeoutMs) {
+        try {
+            thread.join(timeoutMs);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
+    }
+
     /** What the OS granted each thread made so far, in start order. */
     public List<ThreadGrant> grants() {
         return List.copyOf(grants);

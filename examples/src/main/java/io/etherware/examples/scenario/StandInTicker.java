@@ -81,7 +81,7 @@ public final class StandInTicker implements AutoCloseable {
 
     /** Stops every subscription and waits for the threads. Idempotent. */
     @Override
-    public void close() throws InterruptedException {
+    public void close() {
         List<Thread> copy;
         synchronized (this) {
             stop = true;
@@ -89,7 +89,7 @@ public final class StandInTicker implements AutoCloseable {
         }
         for (Thread thread : copy) {
             LockSupport.unpark(thread);
-            thread.join(1_000L);
+            SimThreads.join(thread, 1_000L);
         }
     }
 }
