@@ -19,7 +19,10 @@ import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.ExecutionException;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.TimeoutException;
+import java.util.function.LongConsumer;
 import java.util.function.Supplier;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
 
 /**
  * An Etherware node: a kernel, its scheduler and its components (paper Fig. 2).
@@ -44,6 +47,8 @@ import java.util.function.Supplier;
  * there.
  */
 public final class EtherwareNode implements Kernel, AutoCloseable {
+
+    private static final Logger log = LoggerFactory.getLogger(Kernel.class);
 
     static {
         registerContents(ContentsTypes.shared());
@@ -211,6 +216,7 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
      */
     public void swap(Profile profile, Supplier<? extends Component> factory) {
         await(swapAsync(profile, factory), "swap", profile);
+        log.info("node {}: component '{}' swapped to its new logic", core.nodeId(), profile);
     }
 
     private void await(CompletableFuture<Void> operation, String what, Profile profile) {
@@ -278,6 +284,12 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
     @Override
     public CompletableFuture<Void> swapAsync(Profile profile, Supplier<? extends Component> factory) {
         return core.swapAsync(profile, factory);
+    }
+
+    @Override
+    public CompletableFuture<SwapTimings> swapAsync(Profile profile, Supplier<? extends Component> factory,
+                                                    LongConsumer onFirstHandling) {
+        return core.swapAsync(profile, factory, onFirstHandling);
     }
 
     @Override

@@ -7,6 +7,7 @@ import io.etherware.core.message.MessageId;
 import io.etherware.core.message.Profile;
 import io.etherware.core.time.NodeClock;
 import java.util.concurrent.CompletableFuture;
+import java.util.function.LongConsumer;
 import java.util.function.Supplier;
 
 /**
@@ -84,6 +85,24 @@ public interface Kernel {
      * and the future fails with that error. The factory is also used for later restarts.
      */
     CompletableFuture<Void> swapAsync(Profile profile, Supplier<? extends Component> factory);
+
+    /**
+     * {@link #swapAsync(Profile, Supplier)}, timed, for measuring the swap gap (the last message
+     * handled by the old logic to the first handled by the new one). The future completes with the
+     * {@link SwapTimings} of the pause, on the thread that ran the swap while it still holds the
+     * component: continue with the {@code ...Async} forms. Then {@code onFirstHandling} receives the
+     * time ({@link NodeClock#nanoTime()}) at which the new logic's first message began; it is
+     * called once, on that message's dispatcher thread after the handling, so it must be quick and
+     * must not block. It is never called if the swap rolls back, or if the new logic is replaced or
+     * stops before it handles a message.
+     *
+     * <p>The default implementation, for kernels that do not time swaps, swaps and reports
+     * {@link SwapTimings#UNMEASURED}; it never calls {@code onFirstHandling}.
+     */
+    default CompletableFuture<SwapTimings> swapAsync(Profile profile, Supplier<? extends Component> factory,
+                                                     LongConsumer onFirstHandling) {
+        return swapAsync(profile, factory).thenApply(swapped -> SwapTimings.UNMEASURED);
+    }
 
     /**
      * The state of a local component at its next message boundary ({@link Component#snapshot()},

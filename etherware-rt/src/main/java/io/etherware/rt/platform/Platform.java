@@ -6,6 +6,7 @@ import io.etherware.rt.platform.internal.NativeResult;
 import io.etherware.rt.platform.internal.RefusalAdvice;
 import io.etherware.rt.platform.internal.RefusalWarnings;
 import java.util.ArrayList;
+import java.util.List;
 import java.util.Objects;
 import java.util.Optional;
 import java.util.OptionalLong;
@@ -63,6 +64,17 @@ public final class Platform {
      * where it belongs when it becomes real-time.
      */
     public ThreadGrant configureCurrentThread(ThreadPolicy requested, CpuSet cpus) {
+        ThreadGrant grant = configureCurrentThreadWithoutWarning(requested, cpus);
+        warnOnce(grant.refusals());
+        return grant;
+    }
+
+    /**
+     * {@link #configureCurrentThread}, but leaves the warning to the caller: for code that
+     * configures several threads and then warns once for all of them with {@link #warnOnce},
+     * most demanding request first, so the fix it quotes is enough for every thread.
+     */
+    public ThreadGrant configureCurrentThreadWithoutWarning(ThreadPolicy requested, CpuSet cpus) {
         Objects.requireNonNull(requested, "requested");
         Objects.requireNonNull(cpus, "cpus");
         var refusals = new ArrayList<PlatformRefusal>();
@@ -84,9 +96,17 @@ public final class Platform {
                                 LinuxNative.priorityMin(osPolicy).value(), LinuxNative.priorityMax(osPolicy).value())));
             }
         }
-        refusals.forEach(warnings::warnOnce);
         return new ThreadGrant(Thread.currentThread().getName(), LinuxNative.currentThreadId(), requested,
                 currentThreadPolicy(), cpus, currentThreadAffinity(), refusals);
+    }
+
+    /**
+     * Logs each refusal at WARN with its errno and fix, unless one of its kind (feature and errno)
+     * was already logged in this JVM. Of several refusals of one kind only the first given is
+     * quoted: give the most demanding first.
+     */
+    public void warnOnce(List<PlatformRefusal> refusals) {
+        refusals.forEach(warnings::warnOnce);
     }
 
     /**

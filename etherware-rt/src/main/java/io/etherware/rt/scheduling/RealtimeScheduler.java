@@ -96,7 +96,8 @@ public final class RealtimeScheduler implements Scheduler {
 
     /**
      * Locks memory if configured, starts the dispatcher threads, waits until each has asked the OS
-     * for its priority and CPUs, and logs the {@link PlatformReport}, one line per dispatcher.
+     * for its priority and CPUs, warns once per kind of refusal (quoting the most demanding
+     * dispatcher), and logs the {@link PlatformReport}, one line per dispatcher.
      */
     @Override
     public void start(JobRunner runner, NodeClock clock) {
@@ -123,6 +124,7 @@ public final class RealtimeScheduler implements Scheduler {
             for (Dispatcher dispatcher : all) {
                 grants.add(awaitGrant(dispatcher, deadlineNs));
             }
+            warnMostDemandingFirst(grants);
             platformReport = new PlatformReport(grants, config.lockMemory(), memoryRefusal);
             dispatchers = all;
             context = newContext;
@@ -130,6 +132,17 @@ public final class RealtimeScheduler implements Scheduler {
                     tsr);
             platformReport.lines().forEach(line -> LOG.info("scheduler {}: {}", name(), line));
         }
+    }
+
+    /**
+     * One warning per kind of refusal for all dispatchers, quoting the highest priority refused:
+     * advice to raise RLIMIT_RTPRIO to dispatcher 3's 60 would leave dispatchers 1 and 2 (80, 70)
+     * refused on the next start. Each dispatcher's own refusal stays in its report line.
+     */
+    private static void warnMostDemandingFirst(List<ThreadGrant> grants) {
+        grants.stream()
+                .sorted(Comparator.comparingInt((ThreadGrant grant) -> grant.requested().priority()).reversed())
+                .forEach(grant -> Platform.current().warnOnce(grant.refusals()));
     }
 
     private static ThreadGrant awaitGrant(Dispatcher dispatcher, long deadlineNs) {

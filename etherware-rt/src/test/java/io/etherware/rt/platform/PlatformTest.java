@@ -64,6 +64,19 @@ class PlatformTest {
     }
 
     @Test
+    void shouldLeaveTheWarningToTheCallerWhenConfiguringWithoutWarning() throws Exception {
+        var platform = new Platform(new RefusalWarnings());
+        ThreadGrant grant = onFreshThread(
+                () -> platform.configureCurrentThreadWithoutWarning(ThreadPolicy.fifo(100), CpuSet.inherit()));
+
+        assertEquals(1, grant.refusals().size(), grant.toLine());
+        assertEquals(0, platform.warnings().warningsLogged());
+        platform.warnOnce(grant.refusals());
+        platform.warnOnce(grant.refusals());
+        assertEquals(1, platform.warnings().warningsLogged());
+    }
+
+    @Test
     void shouldReturnToSchedOtherWhenAskedForNonRealtime() throws Exception {
         var platform = new Platform(new RefusalWarnings());
         ThreadGrant grant = onFreshThread(() -> {

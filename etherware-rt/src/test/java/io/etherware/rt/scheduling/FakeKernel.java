@@ -15,7 +15,8 @@ import java.util.concurrent.atomic.AtomicLong;
  * The kernel's side of the Scheduler SPI, reduced to what scheduling tests need: one message at a
  * time per component (design decision 3). A job for a busy component is parked with it and
  * handed back through {@link Scheduler#submit}, reserved, when the component frees up, the most
- * urgent first by {@link Scheduler#urgency()}. Stands in for the kernel until it lands.
+ * urgent first by {@link Scheduler#urgency()}. Lets scheduler tests and the harness measure the
+ * scheduler alone; the {@code Node...Test}s use the real kernel.
  */
 final class FakeKernel implements JobRunner {
 

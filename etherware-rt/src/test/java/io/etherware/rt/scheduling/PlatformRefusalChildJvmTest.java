@@ -16,7 +16,8 @@ import org.junit.jupiter.api.Test;
 
 /**
  * The platform as a node sees it at start, in a fresh JVM (the once-per-kind warnings are per
- * JVM): refused without privileges, granted with them, and in both cases the node runs.
+ * JVM): refused without privileges, granted with them, and in both cases the node runs its HIGH
+ * message and logs one {@code PlatformReport} line per dispatcher when it starts.
  */
 class PlatformRefusalChildJvmTest {
 
@@ -32,6 +33,13 @@ class PlatformRefusalChildJvmTest {
         long warnings(String containing) {
             return err.stream().filter(line -> line.contains(" WARN ") && line.contains(containing)).count();
         }
+
+        /** The scheduler's INFO log lines at node start, without the logger's prefix. */
+        List<String> startLog() {
+            String prefix = "INFO " + RealtimeScheduler.class.getName() + " - scheduler rt: ";
+            return err.stream().filter(line -> line.contains(prefix))
+                    .map(line -> line.substring(line.indexOf(prefix) + prefix.length())).toList();
+        }
     }
 
     @Test
@@ -44,7 +52,8 @@ class PlatformRefusalChildJvmTest {
                 "--bounding-set=-sys_nice,-ipc_lock", PRLIMIT.toString(), "--rtprio=0", "--memlock=65536"));
 
         assertEquals(0, run.exitCode(), String.join("\n", run.err()));
-        assertEquals(List.of("HIGH"), run.prefixed("RAN "), "the node runs on without real-time priority");
+        assertEquals(List.of("HIGH on rt-dispatcher-1"), run.prefixed("RAN "),
+                "the node runs on without real-time priority");
         List<String> report = run.prefixed("REPORT ");
         assertEquals(5, report.size(), String.join("\n", report));
         assertTrue(report.get(0).contains("requested SCHED_OTHER") && report.get(0).contains("granted SCHED_OTHER"),
@@ -60,9 +69,11 @@ class PlatformRefusalChildJvmTest {
         assertEquals(1, run.warnings("thread priority"), "one warning for three refused dispatchers");
         assertEquals(1, run.warnings("EPERM (errno 1: Operation not permitted)"));
         assertEquals(1, run.warnings("setcap cap_sys_nice+ep"), "the warning says how to fix it");
-        assertEquals(1, run.warnings("RLIMIT_RTPRIO (now soft=0, hard=0)"));
+        assertEquals(1, run.warnings("RLIMIT_RTPRIO (now soft=0, hard=0) to at least 80"),
+                "the one warning quotes the most demanding dispatcher, whichever was refused first");
         assertEquals(1, run.warnings("memory lock"));
         assertEquals(List.of("0 kB"), run.prefixed("VMLCK "));
+        assertLogsTheReportAtStart(run);
     }
 
     @Test
@@ -71,7 +82,8 @@ class PlatformRefusalChildJvmTest {
         Run run = runProbe(List.of());
 
         assertEquals(0, run.exitCode(), String.join("\n", run.err()));
-        assertEquals(List.of("HIGH"), run.prefixed("RAN "));
+        assertEquals(List.of("HIGH on rt-dispatcher-1"), run.prefixed("RAN "));
+        assertLogsTheReportAtStart(run);
         List<String> report = run.prefixed("REPORT ");
         if (OsThreadStat.hasCapSysNice() && OsThreadStat.hasCapability(14 /* CAP_IPC_LOCK */)) {
             assertTrue(report.get(1).contains("granted SCHED_FIFO/80"), report.get(1));
@@ -85,6 +97,18 @@ class PlatformRefusalChildJvmTest {
             assertTrue(report.get(1).contains("granted SCHED_OTHER") && report.get(1).contains("refused"),
                     report.get(1));
             assertEquals(1, run.warnings("thread priority"));
+        }
+    }
+
+    private static void assertLogsTheReportAtStart(Run run) {
+        List<String> report = run.prefixed("REPORT ");
+        List<String> logged = run.startLog();
+        assertEquals(report, logged.subList(1, logged.size()), String.join("\n", run.err()));
+        assertTrue(logged.getFirst().startsWith("placement criticality-deadline, 4 dispatchers"), logged.getFirst());
+        for (int id = 0; id < 4; id++) {
+            assertTrue(logged.get(1 + id).startsWith("rt-dispatcher-" + id + " tid="), logged.get(1 + id));
+            assertTrue(logged.get(1 + id).contains(": requested SCHED_"), logged.get(1 + id));
+            assertTrue(logged.get(1 + id).contains(", granted SCHED_"), logged.get(1 + id));
         }
     }
 

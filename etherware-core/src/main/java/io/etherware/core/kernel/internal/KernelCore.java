@@ -13,6 +13,7 @@ import io.etherware.core.kernel.ProfileRegistry;
 import io.etherware.core.kernel.RemoteRoute;
 import io.etherware.core.kernel.RequestFailed;
 import io.etherware.core.kernel.SupervisionPolicy;
+import io.etherware.core.kernel.SwapTimings;
 import io.etherware.core.kernel.Undeliverable;
 import io.etherware.core.message.Contents;
 import io.etherware.core.message.ContentsTypes;
@@ -35,6 +36,7 @@ import java.util.concurrent.TimeUnit;
 import java.util.concurrent.TimeoutException;
 import java.util.concurrent.atomic.AtomicLong;
 import java.util.concurrent.atomic.LongAdder;
+import java.util.function.LongConsumer;
 import java.util.function.Supplier;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -264,8 +266,19 @@ public final class KernelCore implements Kernel, JobRunner {
     public CompletableFuture<Void> swapAsync(Profile profile, Supplier<? extends Component> factory) {
         Objects.requireNonNull(factory, "factory");
         LocalShell shell = localShell(profile);
-        var swapped = new CompletableFuture<Void>();
-        shell.atBoundary(() -> shell.swap(factory, swapped));
+        var swapped = new CompletableFuture<SwapTimings>();
+        shell.atBoundary(() -> shell.swap(factory, swapped, null));
+        return swapped.thenApply(timings -> null);
+    }
+
+    @Override
+    public CompletableFuture<SwapTimings> swapAsync(Profile profile, Supplier<? extends Component> factory,
+                                                    LongConsumer onFirstHandling) {
+        Objects.requireNonNull(factory, "factory");
+        Objects.requireNonNull(onFirstHandling, "onFirstHandling");
+        LocalShell shell = localShell(profile);
+        var swapped = new CompletableFuture<SwapTimings>();
+        shell.atBoundary(() -> shell.swap(factory, swapped, onFirstHandling));
         return swapped;
     }
 

@@ -5,6 +5,7 @@ import io.etherware.core.component.ComponentState;
 import io.etherware.core.component.Shell;
 import io.etherware.core.kernel.Endpoint;
 import io.etherware.core.kernel.SupervisionPolicy;
+import io.etherware.core.kernel.SwapTimings;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
 import io.etherware.core.scheduler.Job;
@@ -14,6 +15,7 @@ import java.util.List;
 import java.util.Objects;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.atomic.AtomicBoolean;
+import java.util.function.LongConsumer;
 import java.util.function.Supplier;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -77,6 +79,10 @@ public final class LocalShell implements Shell {
     private long lastHandlingNs;
 
     private ComponentState lastSnapshot; // owner
+    /** When the current logic's last handling ended; for a timed swap's gap. */
+    private long lastHandlingEndNs = SwapTimings.UNKNOWN_NS; // owner
+    /** Told when the logic installed by a timed swap begins its first message, then cleared. */
+    private LongConsumer firstHandlingProbe; // owner
     private final long[] restartTimesNs; // owner: ring of the latest restarts
     private int restartHead; // owner
     private int restartsInRing; // owner
@@ -286,6 +292,14 @@ public final class LocalShell implements Shell {
             return;
         }
         Component current = logic;
+        LongConsumer probe = firstHandlingProbe;
+        long probeStartNs = 0;
+        if (probe != null) {
+            // Read here, inside the gate, not the dispatcher's take time: that may precede the
+            // end of the swap for a job taken while the swap was finishing.
+            firstHandlingProbe = null;
+            probeStartNs = kernel.clock().nanoTime();
+        }
         try {
             current.onMessage(message, context);
             if (snapshotting) {
@@ -295,7 +309,21 @@ public final class LocalShell implements Shell {
         } catch (Throwable failure) {
             onFailure(message, failure, nowNs);
         }
-        LAST_HANDLING_NS.setRelease(this, kernel.clock().nanoTime() - nowNs);
+        long endNs = kernel.clock().nanoTime();
+        lastHandlingEndNs = endNs;
+        LAST_HANDLING_NS.setRelease(this, endNs - nowNs);
+        if (probe != null) {
+            tellFirstHandling(probe, probeStartNs);
+        }
+    }
+
+    private void tellFirstHandling(LongConsumer probe, long startNs) {
+        try {
+            probe.accept(startNs);
+        } catch (Throwable failure) {
+            log.warn("node {}: the first-handling callback of the swap of '{}' threw; ignored", kernel.nodeId(), name,
+                    failure);
+        }
     }
 
     // ---------------------------------------------------------------- supervision (owner thread)
@@ -379,6 +407,7 @@ public final class LocalShell implements Shell {
         restartHead = 0;
         restartsInRing = 0;
         lastSnapshot = null;
+        firstHandlingProbe = null; // the swapped-in logic is gone before its first message
         lifecycle = State.STARTING;
         try {
             Component fresh = newLogic(factory);
@@ -395,9 +424,11 @@ public final class LocalShell implements Shell {
 
     /**
      * Boundary action of an upgrade: snapshot, new instance, restore, start, swap, stop the old
-     * one. If anything before the swap throws, the old logic stays and {@code done} fails.
+     * one. If anything before the swap throws, the old logic stays and {@code done} fails. With a
+     * {@code probe}, the new logic's first handling is reported to it (see {@link SwapTimings}).
      */
-    void swap(Supplier<? extends Component> newFactory, CompletableFuture<Void> done) {
+    void swap(Supplier<? extends Component> newFactory, CompletableFuture<SwapTimings> done, LongConsumer probe) {
+        long startNs = kernel.clock().nanoTime();
         if (lifecycle != State.RUNNING) {
             done.completeExceptionally(new IllegalStateException(
                     "component '" + name + "' is " + lifecycle + "; only a RUNNING component can be swapped"));
@@ -406,8 +437,12 @@ public final class LocalShell implements Shell {
         Component old = logic;
         Component fresh;
         ComponentState freshSnapshot;
+        int schemaVersion = -1;
         try {
             ComponentState state = old.snapshot();
+            if (state != null) {
+                schemaVersion = state.schemaVersion();
+            }
             fresh = newLogic(newFactory);
             if (state != null) {
                 fresh.restore(state);
@@ -423,10 +458,15 @@ public final class LocalShell implements Shell {
         logic = fresh;
         factory = newFactory;
         lastSnapshot = freshSnapshot;
+        long oldEndNs = lastHandlingEndNs;
+        lastHandlingEndNs = SwapTimings.UNKNOWN_NS;
+        firstHandlingProbe = probe;
         stopLogic(old);
-        log.info("node {}: component '{}' swapped from {} to {}", kernel.nodeId(), name, old.getClass().getName(),
+        // Debug, not info: this runs inside the pause, where a console write costs tens of
+        // microseconds; the caller of the swap reports it (EtherwareNode.swap, the management service).
+        log.debug("node {}: component '{}' swapped from {} to {}", kernel.nodeId(), name, old.getClass().getName(),
                 fresh.getClass().getName());
-        done.complete(null);
+        done.complete(new SwapTimings(oldEndNs, startNs, kernel.clock().nanoTime(), schemaVersion));
     }
 
     private Component newLogic(Supplier<? extends Component> from) {

@@ -103,7 +103,8 @@ public final class Dispatcher implements Runnable {
     @Override
     public void run() {
         try {
-            grant = Platform.current().configureCurrentThread(spec.policy(), spec.cpus());
+            // The scheduler warns for all dispatchers at once, once it has every grant.
+            grant = Platform.current().configureCurrentThreadWithoutWarning(spec.policy(), spec.cpus());
         } catch (RuntimeException e) {
             LOG.error("dispatcher {} could not configure its thread; it runs at the inherited priority", id, e);
             grant = new ThreadGrant(thread.getName(), -1, spec.policy(), ThreadPolicy.NON_REALTIME, spec.cpus(),

@@ -1,0 +1,120 @@
+package io.etherware.services.management;
+
+import io.etherware.core.component.ComponentContext;
+import io.etherware.core.kernel.Kernel;
+import io.etherware.core.message.ContentsTypes;
+import io.etherware.core.message.Criticality;
+import io.etherware.core.message.Message;
+import io.etherware.core.message.Profile;
+import io.etherware.core.message.QoS;
+import java.time.Duration;
+import java.util.Objects;
+import java.util.concurrent.CompletableFuture;
+
+/**
+ * The client of the management services: asks a node to upgrade one of its components and
+ * returns the outcome with its timings.
+ *
+ * <pre>{@code
+ * UpgradeResult result = Management.upgrade(node, "plant-1", Profile.parse("controller[car=1]"),
+ *         Implementation.ofClass("com.example.ControllerV2")).join();
+ * log.info("swapped in {} us", result.gapNs() / 1_000);
+ * }</pre>
+ *
+ * <p>Requests travel as messages at {@link Criticality#HIGH} (paper Section VI-C1: the upgrade
+ * request has high criticality so the upgrade runs at the highest priority) to
+ * {@link #profileOf(String) the node's management service}, so a node reachable through a network
+ * route is managed the same way as the local one, if it accepts remote requests.
+ *
+ * <p>Thread-safety: stateless; every method may be called from any thread. The futures never
+ * block; see {@link Kernel#request} and {@link ComponentContext#request} for the thread that
+ * completes them.
+ */
+public final class Management {
+
+    /** The role of the management service: its profile is {@code etherware.management[node=<id>]}. */
+    public static final String ROLE = "etherware.management";
+    /** The timeout of a request made without one: beyond an upgrade's default wait for its first message. */
+    public static final Duration DEFAULT_TIMEOUT = Duration.ofSeconds(10);
+    /** The QoS of management requests. */
+    public static final QoS REQUEST_QOS = QoS.of(Criticality.HIGH);
+
+    static {
+        registerContents(ContentsTypes.shared());
+    }
+
+    private Management() {
+    }
+
+    /** The profile of the management service of node {@code nodeId}. */
+    public static Profile profileOf(String nodeId) {
+        return Profile.of(ROLE, "node", nodeId);
+    }
+
+    /**
+     * Registers the management contents ({@code etherware.upgrade}, {@code etherware.upgradeResult},
+     * {@code etherware.managementFailure}) in {@code types}; done for {@link ContentsTypes#shared()}
+     * when this class or the {@link ManagementService} loads.
+     */
+    public static void registerContents(ContentsTypes types) {
+        types.register("etherware.upgrade", UpgradeRequest.class);
+        types.register("etherware.upgradeResult", UpgradeResult.class);
+        types.register("etherware.managementFailure", ManagementFailure.class);
+    }
+
+    /** {@link #upgrade(Kernel, String, Profile, Implementation, Duration)} with {@link #DEFAULT_TIMEOUT}. */
+    public static CompletableFuture<UpgradeResult> upgrade(Kernel kernel, String nodeId, Profile target,
+                                                           Implementation implementation) {
+        return upgrade(kernel, nodeId, target, implementation, DEFAULT_TIMEOUT);
+    }
+
+    /**
+     * Asks node {@code nodeId} to replace the logic of its component {@code target} with
+     * {@code implementation}, from outside any component ({@code kernel}'s node profile is the
+     * sender).
+     *
+     * @return the outcome; fails with {@link ManagementException} when the node refused or the
+     *         upgrade failed (the old logic then serves on), or with
+     *         {@link io.etherware.core.component.RequestFailedException} when no answer came
+     */
+    public static CompletableFuture<UpgradeResult> upgrade(Kernel kernel, String nodeId, Profile target,
+                                                           Implementation implementation, Duration timeout) {
+        Objects.requireNonNull(kernel, "kernel");
+        var request = new Message(profileOf(nodeId), kernel.profile(), kernel.clock().epochNanos(), REQUEST_QOS,
+                UpgradeRequest.of(target, implementation), kernel.newMessageId(), null);
+        return kernel.request(request, timeout.toNanos()).thenApply(Management::upgradeResultOf);
+    }
+
+    /** {@link #upgrade(ComponentContext, String, Profile, Implementation, Duration)} with {@link #DEFAULT_TIMEOUT}. */
+    public static CompletableFuture<UpgradeResult> upgrade(ComponentContext context, String nodeId, Profile target,
+                                                           Implementation implementation) {
+        return upgrade(context, nodeId, target, implementation, DEFAULT_TIMEOUT);
+    }
+
+    /**
+     * From a component (the paper's Requester): asks node {@code nodeId} to upgrade {@code target}.
+     * The future completes on the requesting component's dispatcher, like any
+     * {@link ComponentContext#request}; never wait for it there.
+     */
+    public static CompletableFuture<UpgradeResult> upgrade(ComponentContext context, String nodeId, Profile target,
+                                                           Implementation implementation, Duration timeout) {
+        Objects.requireNonNull(context, "context");
+        return context.request(profileOf(nodeId), UpgradeRequest.of(target, implementation), REQUEST_QOS,
+                timeout.toNanos()).thenApply(Management::upgradeResultOf);
+    }
+
+    /**
+     * The result an answer to an upgrade request carries.
+     *
+     * @throws ManagementException   if the answer is a {@link ManagementFailure}
+     * @throws IllegalStateException if the answer is anything else
+     */
+    public static UpgradeResult upgradeResultOf(Message reply) {
+        return switch (reply.contents()) {
+            case UpgradeResult result -> result;
+            case ManagementFailure failure -> throw new ManagementException(failure);
+            default -> throw new IllegalStateException("the answer " + reply.messageId() + " to an upgrade carries "
+                    + reply.contents().getClass().getSimpleName() + ", not an upgrade result");
+        };
+    }
+}

@@ -1,0 +1,51 @@
+package io.etherware.services.management;
+
+import io.etherware.core.message.Contents;
+import io.etherware.core.message.Profile;
+import java.util.Objects;
+
+/**
+ * The answer to a management request that was refused or failed, registered as
+ * {@code etherware.managementFailure}. Whatever the reason, the component kept its old logic and
+ * no message to it was lost.
+ *
+ * <p>Immutable; safe to share between threads.
+ *
+ * @param operation what was asked, e.g. {@code upgrade}
+ * @param target    the component's profile as the request named it
+ * @param reason    the kind of failure
+ * @param error     what went wrong, naming the offending value and, where there is one, the fix
+ */
+public record ManagementFailure(String operation, Profile target, Reason reason, String error) implements Contents {
+
+    public ManagementFailure {
+        Objects.requireNonNull(operation, "operation");
+        Objects.requireNonNull(target, "target");
+        Objects.requireNonNull(reason, "reason");
+        Objects.requireNonNull(error, "error");
+    }
+
+    /** Why a management request failed. */
+    public enum Reason {
+        /** The request came from another node and this node does not accept remote requests. */
+        REMOTE_REFUSED,
+        /** The request was malformed (e.g. a class name that is not a binary name). */
+        BAD_REQUEST,
+        /** No local component matches the profile (or it is hosted on another node). */
+        UNKNOWN_COMPONENT,
+        /** The component is not running (failed, stopped), so it cannot be upgraded. */
+        NOT_RUNNING,
+        /** The jar is outside the allowlisted directories. */
+        CODE_NOT_ALLOWED,
+        /** The class or the jar could not be found or loaded. */
+        CLASS_NOT_LOADABLE,
+        /** The class breaks the implementation contract (see {@link Implementation}). */
+        INVALID_IMPLEMENTATION,
+        /** The class's constructor or static initializer threw. */
+        CONSTRUCTION_FAILED,
+        /** The new logic's {@code restore} or {@code onStart} threw; the old logic resumed. */
+        ROLLED_BACK,
+        /** The management service is stopping or failed unexpectedly. */
+        SERVICE_FAILED
+    }
+}

@@ -1,0 +1,349 @@
+package io.etherware.services.management;
+
+import io.etherware.core.component.Component;
+import io.etherware.core.component.ComponentContext;
+import io.etherware.core.component.Shell;
+import io.etherware.core.kernel.Endpoint;
+import io.etherware.core.kernel.EtherwareNode;
+import io.etherware.core.kernel.Kernel;
+import io.etherware.core.kernel.ProfileResolutionException;
+import io.etherware.core.kernel.SwapTimings;
+import io.etherware.core.message.ContentsTypes;
+import io.etherware.core.message.Message;
+import io.etherware.core.message.Profile;
+import io.etherware.services.management.ManagementFailure.Reason;
+import io.etherware.services.management.internal.ImplementationLoader;
+import io.etherware.services.management.internal.LoadFailure;
+import java.net.URLClassLoader;
+import java.util.Map;
+import java.util.Objects;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.CompletionException;
+import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.Executor;
+import java.util.concurrent.ExecutorService;
+import java.util.concurrent.Executors;
+import java.util.concurrent.RejectedExecutionException;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicReference;
+import java.util.concurrent.atomic.LongAdder;
+import org.slf4j.Logger;
+
+/**
+ * A node's management service (paper Section VI-C): a component at
+ * {@code etherware.management[node=<id>]} that serves {@link UpgradeRequest}s for the node's own
+ * components and answers each with an {@link UpgradeResult} or a {@link ManagementFailure}.
+ *
+ * <h2>An upgrade, step by step</h2>
+ * <ol>
+ *   <li>On the service's dispatcher: refuse a request made on another node unless
+ *       {@link ManagementConfig#acceptRemoteRequests()}, then hand the work to the service's own
+ *       worker thread; the dispatcher is free again at once.</li>
+ *   <li>On the worker: resolve the component, load and check the class (from the class path or
+ *       an allowlisted jar, see {@link Implementation}) and construct its first instance.</li>
+ *   <li>Back on the service's dispatcher (the worker sends the loaded logic to the service as a
+ *       local message carrying the request's QoS, so the swap starts at the request's priority,
+ *       paper Section VI-C1):
+ *       {@link Kernel#swapAsync(Profile, java.util.function.Supplier, java.util.function.LongConsumer)}
+ *       without waiting for it. At the component's next message boundary the kernel snapshots the
+ *       old logic, restores the state into the new one ({@code restore} sees the state's
+ *       {@code schemaVersion()}), starts it and swaps it in; messages arriving meanwhile wait and
+ *       are then delivered in order, exactly once. If the snapshot, {@code restore} or
+ *       {@code onStart} throws, the old logic resumes and the answer is {@link Reason#ROLLED_BACK}
+ *       with the cause.</li>
+ *   <li>The answer waits (without blocking anything) for the new logic's first message, at most
+ *       {@link ManagementConfig#firstMessageWaitNs()} after loading, to report the swap gap; it is
+ *       assembled and sent on the worker.</li>
+ * </ol>
+ *
+ * <p>Threading: {@link #onMessage} runs on a dispatcher and never blocks or loads code there.
+ * Loading and answering run on one worker thread per service, so upgrades are loaded one at a
+ * time. The swap runs where the kernel puts it: on the service's dispatcher if the component is
+ * between messages, else on the component's dispatcher right after its current message. Either
+ * way the new logic's {@code restore} and {@code onStart} run on a dispatcher and should be quick.
+ */
+public final class ManagementService implements Component {
+
+    private static final String UPGRADE = "upgrade";
+
+    static {
+        Management.registerContents(ContentsTypes.shared());
+    }
+
+    private final Kernel kernel;
+    private final ManagementConfig config;
+    private final ImplementationLoader loader;
+    /** The jar class loader behind each component upgraded from a jar; closed when replaced. */
+    private final Map<Profile, URLClassLoader> jarLoaders;
+    private final Counters counters;
+    private ExecutorService worker;
+    private Executor continuations;
+    private ComponentContext context;
+    private Logger log;
+
+    /**
+     * A service managing the components of {@code kernel}'s node; add it at
+     * {@link Management#profileOf}, or use {@link #install}.
+     */
+    public ManagementService(Kernel kernel, ManagementConfig config) {
+        this(kernel, config, new Counters(), new ConcurrentHashMap<>());
+    }
+
+    private ManagementService(Kernel kernel, ManagementConfig config, Counters counters,
+                              Map<Profile, URLClassLoader> jarLoaders) {
+        this.kernel = Objects.requireNonNull(kernel, "kernel");
+        this.config = Objects.requireNonNull(config, "config");
+        this.loader = new ImplementationLoader(config.allowlist(), config.classLoader());
+        this.counters = counters;
+        this.jarLoaders = jarLoaders;
+    }
+
+    /**
+     * Adds a management service to {@code node} at {@code etherware.management[node=<id>]}.
+     *
+     * @return the service; if its supervision restarts it, the new instances share its counters
+     */
+    public static ManagementService install(EtherwareNode node, ManagementConfig config) {
+        var first = new ManagementService(node, config);
+        var unused = new AtomicReference<>(first);
+        node.add(Management.profileOf(node.nodeId()), () -> {
+            ManagementService instance = unused.getAndSet(null);
+            return instance != null ? instance
+                    : new ManagementService(node, config, first.counters, first.jarLoaders);
+        });
+        return first;
+    }
+
+    @Override
+    public void onStart(ComponentContext context) {
+        this.context = context;
+        this.log = context.logger();
+        this.worker = Executors.newSingleThreadExecutor(Thread.ofPlatform().daemon()
+                .name("etherware-management-" + kernel.nodeId()).factory());
+        ExecutorService own = worker;
+        // After onStop, an upgrade in flight still answers: on the thread that completes it.
+        this.continuations = task -> {
+            try {
+                own.execute(task);
+            } catch (RejectedExecutionException stopped) {
+                task.run();
+            }
+        };
+    }
+
+    @Override
+    public void onStop() {
+        worker.shutdown();
+    }
+
+    @Override
+    public void onMessage(Message message, ComponentContext context) {
+        switch (message.contents()) {
+            case UpgradeRequest request -> accept(message, request);
+            case Prepared prepared when context.self().equals(message.sender()) -> swap(prepared);
+            default -> {
+                if (message.hasSender() && !message.isReply()) {
+                    counters.refused.increment();
+                    reply(message, new ManagementFailure(message.contents().getClass().getSimpleName(),
+                            context.self(), Reason.BAD_REQUEST, "the management service does not serve "
+                            + message.contents().getClass().getSimpleName() + " messages; send an UpgradeRequest"));
+                } else {
+                    log.debug("ignored {} ({})", message.messageId(), message.contents());
+                }
+            }
+        }
+    }
+
+    private void accept(Message message, UpgradeRequest request) {
+        long receivedNs = kernel.clock().nanoTime();
+        String origin = message.messageId().nodeId();
+        if (!origin.equals(kernel.nodeId()) && !config.acceptRemoteRequests()) {
+            counters.refused.increment();
+            log.warn("refused upgrade request {} of '{}' from node '{}' (sender '{}'): remote requests are disabled",
+                    message.messageId(), request.target(), origin, message.sender());
+            reply(message, new ManagementFailure(UPGRADE, request.target(), Reason.REMOTE_REFUSED, "request "
+                    + message.messageId() + " was made on node '" + origin + "'; node '" + kernel.nodeId()
+                    + "' refuses management requests from other nodes (enable them with"
+                    + " ManagementConfig.builder().acceptRemoteRequests(true))"));
+            return;
+        }
+        try {
+            worker.execute(() -> upgrade(message, request, receivedNs));
+        } catch (RejectedExecutionException e) {
+            fail(message, request, Reason.SERVICE_FAILED, "the management service of node '" + kernel.nodeId()
+                    + "' is stopping");
+        }
+    }
+
+    /**
+     * An upgrade loaded by the worker, handed back to the service's dispatcher as a message to
+     * itself, carrying the request's QoS: the swap then starts at the request's priority (paper
+     * Section VI-C1). Never leaves the node (it is not a registered contents type).
+     */
+    private record Prepared(Message message, UpgradeRequest request, Shell shell, ImplementationLoader.Loaded loaded,
+                            long loadNs, long receivedNs, CompletableFuture<Long> firstHandling)
+            implements io.etherware.core.message.Contents {
+    }
+
+    /** Worker thread: resolve and load, then hand the swap back to the dispatcher. */
+    private void upgrade(Message message, UpgradeRequest request, long receivedNs) {
+        Shell shell;
+        try {
+            shell = localShell(request.target());
+        } catch (LoadFailure e) {
+            fail(message, request, e.reason(), e.getMessage());
+            return;
+        }
+        long loadStartNs = kernel.clock().nanoTime();
+        ImplementationLoader.Loaded loaded;
+        try {
+            loaded = loader.load(request.className(), request.jarPath(), request.configuration());
+        } catch (LoadFailure e) {
+            fail(message, request, e.reason(), e.getMessage());
+            return;
+        } catch (RuntimeException | LinkageError e) {
+            fail(message, request, Reason.CLASS_NOT_LOADABLE, "loading '" + request.className() + "' failed: " + e);
+            return;
+        }
+        long loadNs = kernel.clock().nanoTime() - loadStartNs;
+        // Armed here, not on the dispatcher: the timer's bookkeeping stays out of the swap gap.
+        var firstHandling = new CompletableFuture<Long>();
+        firstHandling.completeOnTimeout(SwapTimings.UNKNOWN_NS, config.firstMessageWaitNs(), TimeUnit.NANOSECONDS);
+        try {
+            context.send(context.self(), new Prepared(message, request, shell, loaded, loadNs, receivedNs,
+                    firstHandling), message.qos());
+        } catch (RuntimeException e) {
+            loaded.discard();
+            fail(message, request, Reason.SERVICE_FAILED, "the management service could not schedule the swap: " + e);
+        }
+    }
+
+    /**
+     * Dispatcher: starts the swap without waiting for it. If the component is between messages
+     * the swap runs here and now; otherwise the kernel runs it on the component's dispatcher
+     * when its current message is done. Nothing else happens here, because until the swap is over
+     * (and, on a shared dispatcher, until this handler returns) the component's next message waits:
+     * the answer is assembled on the worker once the new logic has begun its first message.
+     */
+    private void swap(Prepared prepared) {
+        Message message = prepared.message();
+        UpgradeRequest request = prepared.request();
+        Shell shell = prepared.shell();
+        ImplementationLoader.Loaded loaded = prepared.loaded();
+        String oldImplementation = shell.logicType().getName();
+        CompletableFuture<Long> firstHandling = prepared.firstHandling();
+        CompletableFuture<SwapTimings> swap;
+        try {
+            swap = kernel.swapAsync(shell.profile(), loaded.factory(), firstHandling::complete);
+        } catch (RuntimeException e) {
+            loaded.discard();
+            fail(message, request, Reason.UNKNOWN_COMPONENT, "component '" + shell.profile() + "' went away: " + e);
+            return;
+        }
+        // Not ...Async: on success this runs inside the swap and must cost nothing; only a failure
+        // (the slow path) goes to the worker.
+        swap.whenComplete((timings, error) -> {
+            if (error != null) {
+                continuations.execute(() -> rolledBack(message, request, shell, loaded, oldImplementation, error));
+            }
+        });
+        // Runs when both are known: the new logic's first message began (or the wait ended).
+        swap.thenAcceptBothAsync(firstHandling, (timings, firstNs) -> {
+            installed(shell.profile(), loaded.loader());
+            answer(message, shell.profile(), oldImplementation, loaded, prepared.loadNs(), timings, firstNs,
+                    prepared.receivedNs());
+        }, continuations);
+    }
+
+    private void rolledBack(Message message, UpgradeRequest request, Shell shell, ImplementationLoader.Loaded loaded,
+                            String oldImplementation, Throwable error) {
+        loaded.discard();
+        Throwable cause = error instanceof CompletionException && error.getCause() != null ? error.getCause() : error;
+        fail(message, request, Reason.ROLLED_BACK, "the swap of '" + shell.profile() + "' to "
+                + loaded.type().getName() + " was rolled back, " + oldImplementation + " serves on: " + cause);
+    }
+
+    private Shell localShell(Profile target) throws LoadFailure {
+        Endpoint endpoint;
+        try {
+            endpoint = kernel.registry().resolve(target);
+        } catch (ProfileResolutionException e) {
+            throw new LoadFailure(Reason.UNKNOWN_COMPONENT, e.getMessage());
+        }
+        if (!(endpoint instanceof Endpoint.Local local)) {
+            throw new LoadFailure(Reason.UNKNOWN_COMPONENT, "'" + target + "' is hosted on another node, not on '"
+                    + kernel.nodeId() + "'; send the upgrade to that node's management service");
+        }
+        Shell shell = local.shell();
+        if (shell.profile().equals(context.self())) {
+            throw new LoadFailure(Reason.BAD_REQUEST, "the management service cannot upgrade itself");
+        }
+        if (shell.state() != Shell.State.RUNNING) {
+            throw new LoadFailure(Reason.NOT_RUNNING, "component '" + shell.profile() + "' is " + shell.state()
+                    + "; only a RUNNING component can be upgraded");
+        }
+        return shell;
+    }
+
+    /** After a successful swap: the jar loader of the replaced logic is no longer needed. */
+    private void installed(Profile profile, URLClassLoader newLoader) {
+        URLClassLoader previous = newLoader == null ? jarLoaders.remove(profile) : jarLoaders.put(profile, newLoader);
+        ImplementationLoader.closeQuietly(previous);
+    }
+
+    private void answer(Message message, Profile target, String oldImplementation, ImplementationLoader.Loaded loaded,
+                        long loadNs, SwapTimings timings, long firstNs, long receivedNs) {
+        long gapNs = firstNs == SwapTimings.UNKNOWN_NS || timings.lastOldHandlingEndNs() == SwapTimings.UNKNOWN_NS
+                ? -1 : firstNs - timings.lastOldHandlingEndNs();
+        long pauseNs = timings.pauseNs() == SwapTimings.UNKNOWN_NS ? -1 : timings.pauseNs();
+        long totalNs = timings.swapEndNs() == SwapTimings.UNKNOWN_NS ? -1 : timings.swapEndNs() - receivedNs;
+        var result = new UpgradeResult(target, oldImplementation, loaded.type().getName(), loaded.source(),
+                timings.stateSchemaVersion(), loadNs, pauseNs, gapNs, totalNs);
+        counters.upgraded.increment();
+        log.info("upgraded '{}' from {} to {} ({}): load {} us, pause {} us, gap {}", target, oldImplementation,
+                result.newImplementation(), result.source(), loadNs / 1_000, pauseNs / 1_000,
+                gapNs < 0 ? "unknown" : gapNs / 1_000 + " us");
+        reply(message, result);
+    }
+
+    private void fail(Message message, UpgradeRequest request, Reason reason, String error) {
+        counters.failed.increment();
+        log.warn("upgrade request {} of '{}' to {} failed ({}): {}", message.messageId(), request.target(),
+                request.className(), reason, error);
+        reply(message, new ManagementFailure(UPGRADE, request.target(), reason, error));
+    }
+
+    private void reply(Message request, ManagementFailure failure) {
+        if (request.hasSender()) {
+            context.reply(request, failure);
+        }
+    }
+
+    private void reply(Message request, UpgradeResult result) {
+        if (request.hasSender()) {
+            context.reply(request, result);
+        }
+    }
+
+    /** Upgrades answered with a result. Any thread. */
+    public long upgradedCount() {
+        return counters.upgraded.sum();
+    }
+
+    /** Upgrades that failed (refusals not included). Any thread. */
+    public long failedCount() {
+        return counters.failed.sum();
+    }
+
+    /** Requests refused: from other nodes, or of a kind the service does not serve. Any thread. */
+    public long refusedCount() {
+        return counters.refused.sum();
+    }
+
+    /** The counters, shared by the instances that restarts make. */
+    private static final class Counters {
+        final LongAdder upgraded = new LongAdder();
+        final LongAdder failed = new LongAdder();
+        final LongAdder refused = new LongAdder();
+    }
+}

@@ -1,0 +1,108 @@
+package io.etherware.services.notifier;
+
+import io.etherware.core.message.Profile;
+import io.etherware.rt.platform.CpuSet;
+import io.etherware.rt.platform.ThreadPolicy;
+import io.etherware.rt.scheduling.ThreadSchedulingRule;
+import java.util.Objects;
+
+/**
+ * How a {@link Notifier} runs: its profile, its thread's OS policy and CPUs, and the optional spin
+ * before each release. Immutable; validated when built, naming the wrong field.
+ *
+ * <p>Defaults ({@link #defaults()}): SCHED_FIFO {@value #DEFAULT_PRIORITY}, one level above the
+ * highest dispatcher of the paper's Table II ({@link ThreadSchedulingRule#HIGH_PRIORITY}), so a
+ * Tick is released before any component work that it activates can delay it; every CPU; no spin.
+ * The priority is a request: refused (no CAP_SYS_NICE, say), the platform warns once with the
+ * errno and the fix, and the Notifier runs on at the priority it has. Use {@link #above} to sit
+ * one level above another rule, and {@link #withThreadPolicy} with
+ * {@link ThreadPolicy#NON_REALTIME} to ask for nothing.
+ *
+ * @param profile      the profile of the Notifier's component, or null for
+ *                     {@link Notifier#profileFor(String) etherware.notifier[node=&lt;nodeId&gt;]}
+ * @param threadPolicy the OS policy and priority requested for the Notifier thread
+ * @param cpus         the CPUs of the Notifier thread
+ * @param spinNs       how long before each release the thread stops sleeping and spins on the
+ *                     clock instead, in 0..{@value #MAX_SPIN_NS} (0: no spin). A spin trades CPU
+ *                     for wake-up accuracy; it is bounded per release, so at real-time priority it
+ *                     takes at most {@code spinNs} per release from everything else on its CPU
+ * @param threadName   the Notifier thread's name
+ */
+public record NotifierConfig(Profile profile, ThreadPolicy threadPolicy, CpuSet cpus, long spinNs,
+                             String threadName) {
+
+    /** Default SCHED_FIFO priority: one above Table II's highest dispatcher. */
+    public static final int DEFAULT_PRIORITY = ThreadSchedulingRule.HIGH_PRIORITY + 1;
+    /** Longest allowed spin before a release: 100 µs. */
+    public static final long MAX_SPIN_NS = 100_000;
+    /** Default thread name. */
+    public static final String DEFAULT_THREAD_NAME = "etherware-notifier";
+
+    private static final NotifierConfig DEFAULTS = new NotifierConfig(null, ThreadPolicy.fifo(DEFAULT_PRIORITY),
+            CpuSet.inherit(), 0, DEFAULT_THREAD_NAME);
+
+    public NotifierConfig {
+        Objects.requireNonNull(threadPolicy, "threadPolicy");
+        Objects.requireNonNull(cpus, "cpus");
+        Objects.requireNonNull(threadName, "threadName");
+        if (threadPolicy.isRealtime() && (threadPolicy.priority() < ThreadSchedulingRule.MIN_REALTIME_PRIORITY
+                || threadPolicy.priority() > ThreadSchedulingRule.MAX_REALTIME_PRIORITY)) {
+            throw new IllegalArgumentException("threadPolicy.priority=" + threadPolicy.priority() + " must be in "
+                    + ThreadSchedulingRule.MIN_REALTIME_PRIORITY + ".." + ThreadSchedulingRule.MAX_REALTIME_PRIORITY
+                    + " for " + threadPolicy.policy().osName());
+        }
+        if (spinNs < 0 || spinNs > MAX_SPIN_NS) {
+            throw new IllegalArgumentException("spinNs=" + spinNs + " must be in 0.." + MAX_SPIN_NS
+                    + " (a spin at real-time priority must be short; 0 turns it off)");
+        }
+        if (threadName.isBlank()) {
+            throw new IllegalArgumentException("threadName='" + threadName + "' must not be blank");
+        }
+    }
+
+    /** SCHED_FIFO {@value #DEFAULT_PRIORITY}, every CPU, no spin, the node's default profile. */
+    public static NotifierConfig defaults() {
+        return DEFAULTS;
+    }
+
+    /**
+     * The defaults, but one real-time level above the highest dispatcher of {@code rule} (at most
+     * 99), with the same policy; {@link ThreadPolicy#NON_REALTIME} when no dispatcher of the rule
+     * is real-time.
+     */
+    public static NotifierConfig above(ThreadSchedulingRule rule) {
+        Objects.requireNonNull(rule, "rule");
+        ThreadPolicy highest = ThreadPolicy.NON_REALTIME;
+        for (int id = 0; id < rule.size(); id++) {
+            ThreadPolicy policy = rule.dispatcher(id).policy();
+            if (policy.isRealtime() && policy.priority() >= highest.priority()) {
+                highest = policy;
+            }
+        }
+        if (!highest.isRealtime()) {
+            return DEFAULTS.withThreadPolicy(ThreadPolicy.NON_REALTIME);
+        }
+        int priority = Math.min(highest.priority() + 1, ThreadSchedulingRule.MAX_REALTIME_PRIORITY);
+        return DEFAULTS.withThreadPolicy(new ThreadPolicy(highest.policy(), priority));
+    }
+
+    public NotifierConfig withProfile(Profile newProfile) {
+        return new NotifierConfig(newProfile, threadPolicy, cpus, spinNs, threadName);
+    }
+
+    public NotifierConfig withThreadPolicy(ThreadPolicy newThreadPolicy) {
+        return new NotifierConfig(profile, newThreadPolicy, cpus, spinNs, threadName);
+    }
+
+    public NotifierConfig withCpus(CpuSet newCpus) {
+        return new NotifierConfig(profile, threadPolicy, newCpus, spinNs, threadName);
+    }
+
+    public NotifierConfig withSpinNs(long newSpinNs) {
+        return new NotifierConfig(profile, threadPolicy, cpus, newSpinNs, threadName);
+    }
+
+    public NotifierConfig withThreadName(String newThreadName) {
+        return new NotifierConfig(profile, threadPolicy, cpus, spinNs, newThreadName);
+    }
+}

@@ -1,0 +1,52 @@
+package io.etherware.services.notifier;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+
+import io.etherware.core.component.Component;
+import io.etherware.core.component.ComponentContext;
+import io.etherware.core.kernel.EtherwareNode;
+import io.etherware.core.message.Criticality;
+import io.etherware.core.message.Message;
+import io.etherware.core.message.Profile;
+import io.etherware.core.message.Tick;
+import java.util.List;
+import java.util.concurrent.CopyOnWriteArrayList;
+import org.junit.jupiter.api.Test;
+
+/**
+ * The README's Notifier example (notes/readme-notifier.md), verbatim between the markers, so that
+ * it always compiles and runs. Keep the README in step with this body. The Notifier thread asks
+ * for SCHED_FIFO 81 here, as by default; it only sleeps (no spin).
+ */
+class NotifierReadmeExampleTest {
+
+    private final List<Tick> ticks = new CopyOnWriteArrayList<>();
+
+    @Test
+    void shouldActivateTheControllerEvery15MsWithHighTicks() {
+        try (var node = EtherwareNode.builder().nodeId("pendulum").build()) {
+            // README example begins
+            Notifier.install(node, NotifierConfig.defaults()); // thread asks for SCHED_FIFO 81; warns once if refused
+            node.add(Profile.of("controller"), () -> new Component() {
+                @Override public void onStart(ComponentContext context) {
+                    context.send(Notifier.profileFor(node.nodeId()), TickSubscribe.periodic(Criticality.HIGH, 15_000_000L));
+                }
+                @Override public void onMessage(Message message, ComponentContext context) {
+                    if (message.contents() instanceof Tick tick) control(tick); // tick.releaseNs(): when it was due
+                }
+            });
+            // README example ends
+            node.start();
+            Await.until(() -> ticks.size() >= 4, 20_000, () -> ticks.size() + " Ticks");
+        }
+        Tick first = ticks.getFirst();
+        for (Tick tick : List.copyOf(ticks)) {
+            assertEquals(15_000_000L, tick.periodNs());
+            assertEquals(first.releaseNs() + (tick.sequence() - first.sequence()) * 15_000_000L, tick.releaseNs());
+        }
+    }
+
+    private void control(Tick tick) {
+        ticks.add(tick);
+    }
+}
