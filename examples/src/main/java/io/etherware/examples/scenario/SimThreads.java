@@ -13,9 +13,8 @@ import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
 /**
- * Threads of the simulated physical world (the DSP board, the probe that watches the plant) and of
- * the stand-ins around the node, raised to a real-time priority from inside the JVM through
- * {@link Platform}. The JVM's own load must not starve the world the controller acts on, whichever
+ * Threads of the simulated physical world (the DSP board, the probe that watches the plant),
+ * raised to a real-time priority from inside the JVM through {@link Platform}. The JVM's own load must not starve the world the controller acts on, whichever
  * scheduler the node uses; these threads sleep between their cycles and never spin.
  *
  * <p>Thread-safe. Each thread asks for its priority itself, as its first act; a refusal is warned

@@ -16,7 +16,6 @@ import io.etherware.examples.scenario.ScenarioEvent;
 import io.etherware.examples.scenario.ScenarioEvents;
 import io.etherware.examples.scenario.ScenarioRun;
 import io.etherware.examples.scenario.SimThreads;
-import io.etherware.examples.scenario.StandInTicker;
 import io.etherware.pendulum.components.PendulumController;
 import io.etherware.pendulum.control.GainSet;
 import io.etherware.pendulum.plant.PendulumState;
@@ -26,6 +25,10 @@ import io.etherware.rt.scheduling.DispatcherStats;
 import io.etherware.rt.scheduling.RealtimeScheduler;
 import io.etherware.rt.scheduling.RealtimeSchedulerConfig;
 import io.etherware.rt.scheduling.ThreadSchedulingRule;
+import io.etherware.services.notifier.Notifier;
+import io.etherware.services.notifier.NotifierConfig;
+import io.etherware.services.notifier.Subscription;
+import io.etherware.services.notifier.SubscriptionStats;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
@@ -41,21 +44,20 @@ import org.slf4j.LoggerFactory;
  * through the DSP proxy; the stressing task, activated by LOW Ticks every few seconds, computes
  * for about a second on the same node; ordinary threads load every core and allocate. Only the
  * node's scheduler differs between the variants; the simulated world (board, probe) and the
- * Ticks run at the same real-time priorities in both.
+ * node's Notifier run at the same real-time priorities in both.
  *
  * <p>Not thread-safe: one thread runs the variants one after the other.
  */
 public final class StressScenario {
 
-    /** The Ticks' thread: the Notifier's default priority, above every dispatcher of Table II. */
-    static final int TICKER_PRIORITY = 81;
-
     private static final Logger LOG = LoggerFactory.getLogger(StressScenario.class);
     private static final long PROGRESS_EVERY_NS = 500_000_000L;
     /** Each variant's unrecorded warm-up. */
     private static final long WARM_UP_NS = 1_500_000_000L;
-    /** The world's threads: the board, the probe and the two Tick subscriptions. */
-    private static final int SIM_THREADS = 4;
+    /** The world's threads: the board and the probe. */
+    private static final int SIM_THREADS = 2;
+    private static final String CONTROL_TICKS = "controller";
+    private static final String STRESS_TICKS = "stress";
     private static final long THREAD_START_TIMEOUT_NS = 2_000_000_000L;
     /** Cycles and samples kept beyond the expected count, for slack. */
     private static final int SLACK = 1_000;
@@ -142,26 +144,31 @@ public final class StressScenario {
         GcActivity gcBefore = GcActivity.now();
         try (PendulumRig rig = new PendulumRig("stress-" + variant.key(), () -> scheduler, initial, gains, cycles)) {
             rig.node().add(StressComponent.PROFILE, () -> new StressComponent(settings.stressWorkNs(), events));
+            // The node's Notifier: SCHED_FIFO 81, above every dispatcher, in both runs.
+            Notifier notifier = Notifier.install(rig.node(), NotifierConfig.defaults());
             PlantProbe probe = new PlantProbe(rig.board(), clock, periodNs, capacity, RunSummary.FALL_THRESHOLD_RAD,
                     events);
-            StandInTicker ticker = new StandInTicker(rig.node(), threads.fifo("ticks", TICKER_PRIORITY));
             CpuLoad load = CpuLoad.start(0);
             long originNs;
             long firstReleaseNs;
             long endNs;
-            try (probe; ticker) {
+            SubscriptionStats controlTicks;
+            SubscriptionStats stressTicks;
+            try (probe) {
                 originNs = rig.start(threads);
                 firstReleaseNs = originNs + periodNs;
-                ticker.periodic(PendulumController.DEFAULT_PROFILE, QoS.periodic(Criticality.HIGH, periodNs),
-                        firstReleaseNs);
-                ticker.periodic(StressComponent.PROFILE, QoS.periodic(Criticality.LOW, settings.stressEveryNs()),
-                        originNs + settings.firstStressNs());
+                notifier.subscribe(Subscription.periodic(CONTROL_TICKS, PendulumController.DEFAULT_PROFILE,
+                        Criticality.HIGH, periodNs).startingAt(firstReleaseNs));
+                notifier.subscribe(Subscription.periodic(STRESS_TICKS, StressComponent.PROFILE, Criticality.LOW,
+                        settings.stressEveryNs()).startingAt(originNs + settings.firstStressNs()));
                 probe.start(originNs, threads.fifo("plant-probe", SimThreads.PROBE_PRIORITY));
                 // The load starts once the world's threads hold their priorities: a thread is born
                 // at normal priority and would otherwise queue behind the load for its first step.
                 threads.awaitConfigured(SIM_THREADS, THREAD_START_TIMEOUT_NS);
                 load = CpuLoad.start(settings.loadThreads());
                 endNs = watch(settings, clock, originNs, firstReleaseNs, probe, cycles, line);
+                controlTicks = notifier.unsubscribe(CONTROL_TICKS).orElseThrow();
+                stressTicks = notifier.unsubscribe(STRESS_TICKS).orElseThrow();
             } finally {
                 load.close();
             }
@@ -169,8 +176,10 @@ public final class StressScenario {
             List<ScenarioEvent> marks = events.snapshot();
             List<String> notes = new ArrayList<>();
             notes.add(String.format(Locale.ROOT, "%s: %s", variant.title(), variant.description()));
-            notes.add(String.format(Locale.ROOT, "  Ticks sent %d, skipped by the ticker %d; stress activations %d;"
-                    + " controller cycles recorded %d (dropped %d)", ticker.sent(), ticker.skipped(),
+            notes.add(String.format(Locale.ROOT, "  controller Ticks: sent %d, skipped %d late and %d busy, sending"
+                    + " lateness p99 %.3f ms; stress Ticks sent %d, activations %d; cycles recorded %d (dropped %d)",
+                    controlTicks.ticksSent(), controlTicks.skippedLate(), controlTicks.skippedBusy(),
+                    controlTicks.latenessNs().getValueAtPercentile(99.0) / 1e6, stressTicks.ticksSent(),
                     marks.stream().filter(e -> e.kind() == ScenarioEvent.Kind.STRESS_START).count(),
                     cycles.cycles().size(), cycles.dropped()));
             notes.add(String.format(Locale.ROOT, "  load: %d threads allocated %.1f GiB; GC: %d collections, %d ms;"
@@ -180,6 +189,7 @@ public final class StressScenario {
                 notes.add(realtimeNote(realtime));
                 realtime.platformReport().threads().forEach(grant -> notes.add("  " + grant.toLine()));
             }
+            notifier.threadGrant().ifPresent(grant -> notes.add("  " + grant.toLine()));
             threads.grants().stream().map(ThreadGrant::toLine).forEach(grant -> notes.add("  " + grant));
             if (!threads.allGranted()) {
                 LOG.warn("the simulated world did not get its real-time priorities; the runs compare less than"
