@@ -1,6 +1,7 @@
 package io.etherware.examples;
 
 import io.etherware.examples.stress.StressCommand;
+import io.etherware.examples.upgrade.UpgradeCommand;
 import picocli.CommandLine;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
@@ -22,7 +23,7 @@ import picocli.CommandLine.Spec;
  */
 @Command(name = "etherware-demo", mixinStandardHelpOptions = true, versionProvider = EtherwareDemo.Version.class,
         description = "The Etherware paper's experiments on a simulated inverted pendulum.",
-        subcommands = {StressCommand.class, CommandLine.HelpCommand.class},
+        subcommands = {StressCommand.class, UpgradeCommand.class, CommandLine.HelpCommand.class},
         footer = {"", "Plots and CSVs go to target/scenarios/<scenario>/ unless --out says otherwise."})
 public final class EtherwareDemo implements Runnable {
 

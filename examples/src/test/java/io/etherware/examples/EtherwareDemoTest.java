@@ -35,7 +35,7 @@ class EtherwareDemoTest {
     @Test
     void shouldAskForAScenarioWhenNoneIsNamed() {
         assertEquals(2, execute());
-        assertTrue(err.toString().contains("Name a scenario: stress"), err.toString());
+        assertTrue(err.toString().contains("Name a scenario: stress, upgrade"), err.toString());
     }
 
     @Test
@@ -60,6 +60,29 @@ class EtherwareDemoTest {
     void shouldRefuseAnUnknownRunName() {
         assertEquals(2, execute("stress", "--only", "edf"));
         assertTrue(err.toString().contains("--only"), err.toString());
+    }
+
+    @Test
+    void shouldListTheUpgradesOptionsInItsHelp() {
+        assertEquals(0, execute("upgrade", "--help"));
+        String help = out.toString();
+        for (String option : new String[] {"--duration", "--period-ms", "--out", "--upgrade-at", "--jar"}) {
+            assertTrue(help.contains(option), () -> option + " missing from:\n" + help);
+        }
+    }
+
+    @Test
+    void shouldNameTheJarOptionWhenThePluginIsMissing() {
+        assertEquals(2, execute("upgrade", "--jar", "/nonexistent/controller-v2.jar"));
+        assertTrue(err.toString().contains("--jar=/nonexistent/controller-v2.jar is not a file"), err.toString());
+    }
+
+    @Test
+    void shouldRefuseAnUpgradeTooCloseToTheEnd(@org.junit.jupiter.api.io.TempDir java.nio.file.Path dir)
+            throws Exception {
+        java.nio.file.Path jar = java.nio.file.Files.createFile(dir.resolve("x-controller-v2.jar"));
+        assertEquals(2, execute("upgrade", "--jar", jar.toString(), "--duration", "10", "--upgrade-at", "9.5"));
+        assertTrue(err.toString().contains("--upgrade-at=9.5 is out of range"), err.toString());
     }
 
     @Test

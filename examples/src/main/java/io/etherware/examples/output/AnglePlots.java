@@ -19,8 +19,8 @@ import org.knowm.xchart.style.XYStyler;
 import org.knowm.xchart.style.markers.SeriesMarkers;
 
 /**
- * The scenarios' plots, in the spirit of the paper's Fig. 9: joint angles against time, with the
- * stress activations shaded and the fall threshold drawn. Saved as PNG (for the README) and SVG
+ * The scenarios' plots, in the spirit of the paper's Fig. 9 and 11: joint angles against time,
+ * with the stress activations shaded, upgrades marked and the fall threshold drawn. Saved as PNG (for the README) and SVG
  * (for print) with XChart.
  *
  * <p>Stateless and thread-safe; charts are built and encoded headless (set
@@ -34,6 +34,7 @@ public final class AnglePlots {
 
     private static final Color STRESS_SHADE = new Color(255, 170, 0, 70);
     private static final Color THRESHOLD = new Color(150, 150, 150);
+    private static final Color UPGRADE_MARK = new Color(40, 150, 60);
     private static final Color[] RUN_COLORS = {new Color(200, 40, 40), new Color(30, 90, 200),
         new Color(40, 150, 60), new Color(120, 60, 160)};
     private static final BasicStroke DASHED = new BasicStroke(1.0f, BasicStroke.CAP_BUTT, BasicStroke.JOIN_MITER,
@@ -49,6 +50,7 @@ public final class AnglePlots {
         double[] timeS = seconds(run, samples.timeNs());
         double top = Math.max(0.6, 1.1 * Math.max(maxAbs(samples.theta1Rad()), samples.maxAbsTheta2Rad()));
         shadeStress(chart, run, top);
+        markUpgrades(chart, run, top);
         line(chart, "θ1 arm (rad)", timeS, samples.theta1Rad(), new Color(120, 120, 120));
         line(chart, "θ2 pendulum (rad)", timeS, samples.theta2Rad(), RUN_COLORS[1]);
         thresholds(chart, run.durationS());
@@ -152,6 +154,25 @@ public final class AnglePlots {
                 series.setLineColor(STRESS_SHADE);
                 series.setShowInLegend(name.equals("stress task running"));
             }
+        }
+    }
+
+    /** A vertical line at each upgrade event; the legend names the first. */
+    private static void markUpgrades(XYChart chart, ScenarioRun run, double heightRad) {
+        int index = 0;
+        for (ScenarioEvent event : run.events()) {
+            if (event.kind() != ScenarioEvent.Kind.UPGRADE) {
+                continue;
+            }
+            double atS = run.secondsOf(event.timeNs());
+            String name = index == 0 ? "upgrade (management request)" : "upgrade " + index;
+            XYSeries series = chart.addSeries(name, new double[] {atS, atS}, new double[] {-heightRad, heightRad});
+            series.setXYSeriesRenderStyle(XYSeries.XYSeriesRenderStyle.Line);
+            series.setMarker(SeriesMarkers.NONE);
+            series.setLineColor(UPGRADE_MARK);
+            series.setLineStyle(new BasicStroke(1.5f));
+            series.setShowInLegend(index == 0);
+            index++;
         }
     }
 

@@ -39,6 +39,7 @@ public final class ComparisonTable {
         text.append('\n');
         row(text, "max |θ2| (rad)", summaries, s -> f("%.4f", s.maxAbsTheta2Rad()), width);
         row(text, "RMS θ2 (rad)", summaries, s -> f("%.4f", s.rmsTheta2Rad()), width);
+        row(text, "RMS θ1 (rad)", summaries, s -> f("%.4f", s.rmsTheta1Rad()), width);
         row(text, "period jitter p50 (ms)", summaries, s -> f("%.3f", s.jitterP50Ms()), width);
         row(text, "period jitter p99 (ms)", summaries, s -> f("%.3f", s.jitterP99Ms()), width);
         row(text, "period jitter max (ms)", summaries, s -> f("%.3f", s.jitterMaxMs()), width);

@@ -41,14 +41,23 @@ public record ProbeSamples(long[] timeNs, double[] theta1Rad, double[] theta2Rad
 
     /** The root mean square of θ2, 0 without samples. */
     public double rmsTheta2Rad() {
-        if (theta2Rad.length == 0) {
+        return rms(theta2Rad);
+    }
+
+    /** The root mean square of θ1, 0 without samples. */
+    public double rmsTheta1Rad() {
+        return rms(theta1Rad);
+    }
+
+    private static double rms(double[] values) {
+        if (values.length == 0) {
             return 0.0;
         }
         double sum = 0.0;
-        for (double theta2 : theta2Rad) {
-            sum += theta2 * theta2;
+        for (double value : values) {
+            sum += value * value;
         }
-        return Math.sqrt(sum / theta2Rad.length);
+        return Math.sqrt(sum / values.length);
     }
 
     /** The time of the first sample with |θ2| above {@code thresholdRad}, or -1 if none. */

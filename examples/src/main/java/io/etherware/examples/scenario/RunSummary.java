@@ -18,6 +18,7 @@ import java.util.List;
  * its reading failed or it never ran.
  *
  * @param maxAbsTheta2Rad largest |θ2|
+ * @param rmsTheta1Rad    root mean square of θ1, the arm's wander around its set point 0
  * @param rmsTheta2Rad    root mean square of θ2
  * @param jitterP50Ms     median control-period jitter, ms (NaN with fewer than two commands)
  * @param jitterP99Ms     99th percentile of the jitter, ms
@@ -27,7 +28,7 @@ import java.util.List;
  * @param fell            whether |θ2| passed {@link #FALL_THRESHOLD_RAD}
  * @param fellAtS         when it first did, seconds since the origin (NaN if it did not)
  */
-public record RunSummary(double maxAbsTheta2Rad, double rmsTheta2Rad, double jitterP50Ms, double jitterP99Ms,
+public record RunSummary(double maxAbsTheta2Rad, double rmsTheta1Rad, double rmsTheta2Rad, double jitterP50Ms, double jitterP99Ms,
         double jitterMaxMs, long deadlineMisses, long releases, boolean fell, double fellAtS) {
 
     /** The pendulum counts as fallen beyond this |θ2|: far outside what a balancing loop recovers. */
@@ -45,7 +46,7 @@ public record RunSummary(double maxAbsTheta2Rad, double rmsTheta2Rad, double jit
                 .filter(c -> c.releaseNs() <= lastDueReleaseNs && CycleLog.isOnTime(c, periodNs))
                 .mapToLong(ControlCycle::cycle).distinct().count();
         long fellAtNs = samples.firstTimeAboveNs(FALL_THRESHOLD_RAD);
-        return new RunSummary(samples.maxAbsTheta2Rad(), samples.rmsTheta2Rad(), percentileMs(jitterNs, 0.50),
+        return new RunSummary(samples.maxAbsTheta2Rad(), samples.rmsTheta1Rad(), samples.rmsTheta2Rad(), percentileMs(jitterNs, 0.50),
                 percentileMs(jitterNs, 0.99), jitterNs.length == 0 ? Double.NaN : jitterNs[jitterNs.length - 1] / 1e6,
                 Math.max(0, releases - onTime), releases, fellAtNs >= 0,
                 fellAtNs >= 0 ? run.secondsOf(fellAtNs) : Double.NaN);

@@ -20,6 +20,8 @@ public record ScenarioEvent(long timeNs, Kind kind, String label) {
         STRESS_END,
         /** |θ2| passed the fall threshold for the first time. */
         FELL,
+        /** A management request replaced a component's logic (or tried to). */
+        UPGRADE,
         /** Anything else worth a mark. */
         NOTE
     }

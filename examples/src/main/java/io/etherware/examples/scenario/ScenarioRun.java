@@ -1,6 +1,7 @@
 package io.etherware.examples.scenario;
 
 import io.etherware.pendulum.components.ControlCycle;
+import java.util.Arrays;
 import java.util.List;
 import java.util.Objects;
 
@@ -46,5 +47,37 @@ public record ScenarioRun(String key, String title, long periodNs, long originNs
     /** The run's length in seconds, origin to end. */
     public double durationS() {
         return secondsOf(endNs);
+    }
+
+    /**
+     * The part of this run from {@code fromNs} to {@code toNs} (e.g. before and after an upgrade):
+     * the samples and events in that span, the cycles released in it, and the first release of the
+     * span on this run's release grid. The origin stays this run's, so times read the same.
+     */
+    public ScenarioRun slice(String sliceKey, String sliceTitle, long fromNs, long toNs) {
+        if (toNs < fromNs) {
+            throw new IllegalArgumentException("toNs=" + toNs + " is before fromNs=" + fromNs);
+        }
+        long first = firstReleaseNs;
+        if (fromNs > first) {
+            first += ((fromNs - first + periodNs - 1) / periodNs) * periodNs;
+        }
+        long firstRelease = first;
+        long end = Math.min(Math.max(toNs, firstRelease), endNs);
+        int from = 0;
+        while (from < samples.size() && samples.timeNs()[from] < fromNs) {
+            from++;
+        }
+        int to = from;
+        while (to < samples.size() && samples.timeNs()[to] < toNs) {
+            to++;
+        }
+        ProbeSamples part = new ProbeSamples(Arrays.copyOfRange(samples.timeNs(), from, to),
+                Arrays.copyOfRange(samples.theta1Rad(), from, to),
+                Arrays.copyOfRange(samples.theta2Rad(), from, to),
+                Arrays.copyOfRange(samples.torqueNm(), from, to));
+        return new ScenarioRun(sliceKey, sliceTitle, periodNs, originNs, firstRelease, Math.max(end, firstRelease),
+                part, cycles.stream().filter(c -> c.releaseNs() >= firstRelease && c.releaseNs() < toNs).toList(),
+                events.stream().filter(e -> e.timeNs() >= fromNs && e.timeNs() < toNs).toList(), notes);
     }
 }

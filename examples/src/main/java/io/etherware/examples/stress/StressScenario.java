@@ -2,7 +2,6 @@ package io.etherware.examples.stress;
 
 import io.etherware.core.message.Criticality;
 import io.etherware.core.message.QoS;
-import io.etherware.core.scheduler.FifoScheduler;
 import io.etherware.core.scheduler.Scheduler;
 import io.etherware.core.time.NodeClock;
 import io.etherware.examples.scenario.CpuLoad;
@@ -12,19 +11,18 @@ import io.etherware.examples.scenario.PendulumRig;
 import io.etherware.examples.scenario.PlantProbe;
 import io.etherware.examples.scenario.Progress;
 import io.etherware.examples.scenario.RunSummary;
+import io.etherware.examples.scenario.RunWatch;
 import io.etherware.examples.scenario.ScenarioEvent;
 import io.etherware.examples.scenario.ScenarioEvents;
 import io.etherware.examples.scenario.ScenarioRun;
+import io.etherware.examples.scenario.Schedulers;
 import io.etherware.examples.scenario.SimThreads;
 import io.etherware.pendulum.components.PendulumController;
 import io.etherware.pendulum.control.GainSet;
 import io.etherware.pendulum.plant.PendulumState;
 import io.etherware.rt.platform.ThreadGrant;
-import io.etherware.rt.scheduling.CriticalityDeadlinePlacement;
 import io.etherware.rt.scheduling.DispatcherStats;
 import io.etherware.rt.scheduling.RealtimeScheduler;
-import io.etherware.rt.scheduling.RealtimeSchedulerConfig;
-import io.etherware.rt.scheduling.ThreadSchedulingRule;
 import io.etherware.services.notifier.Notifier;
 import io.etherware.services.notifier.NotifierConfig;
 import io.etherware.services.notifier.Subscription;
@@ -33,7 +31,6 @@ import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
 import java.util.Objects;
-import java.util.concurrent.locks.LockSupport;
 import java.util.function.Function;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -51,7 +48,6 @@ import org.slf4j.LoggerFactory;
 public final class StressScenario {
 
     private static final Logger LOG = LoggerFactory.getLogger(StressScenario.class);
-    private static final long PROGRESS_EVERY_NS = 500_000_000L;
     /** Each variant's unrecorded warm-up. */
     private static final long WARM_UP_NS = 1_500_000_000L;
     /** The world's threads: the board and the probe. */
@@ -135,8 +131,8 @@ public final class StressScenario {
         SimThreads threads = new SimThreads();
         ScenarioEvents events = new ScenarioEvents();
         CycleLog cycles = new CycleLog(capacity, periodNs);
-        RealtimeScheduler realtime = variant == Variant.RT ? newRealtimeScheduler() : null;
-        Scheduler scheduler = realtime != null ? realtime : new FifoScheduler("fifo-dispatcher");
+        RealtimeScheduler realtime = variant == Variant.RT ? Schedulers.etherwareRt() : null;
+        Scheduler scheduler = realtime != null ? realtime : Schedulers.original();
         PendulumState initial = new PendulumState(0.0, 0.0, settings.initialTheta2Rad(), 0.0);
         GainSet gains = GainSet.v1Soft(PendulumRig.PARAMETERS);
         System.gc(); // each run starts from a collected heap, so the runs see comparable collector work
@@ -166,7 +162,10 @@ public final class StressScenario {
                 // at normal priority and would otherwise queue behind the load for its first step.
                 threads.awaitConfigured(SIM_THREADS, THREAD_START_TIMEOUT_NS);
                 load = CpuLoad.start(settings.loadThreads());
-                endNs = watch(settings, clock, originNs, firstReleaseNs, probe, cycles, line);
+                endNs = originNs + settings.durationNs();
+                var watch = new RunWatch(clock, originNs, firstReleaseNs, periodNs, probe, cycles, line);
+                watch.until(endNs);
+                watch.finish(endNs);
                 controlTicks = notifier.unsubscribe(CONTROL_TICKS).orElseThrow();
                 stressTicks = notifier.unsubscribe(STRESS_TICKS).orElseThrow();
             } finally {
@@ -198,41 +197,6 @@ public final class StressScenario {
             return new ScenarioRun(variant.key(), variant.title(), periodNs, originNs, firstReleaseNs, endNs,
                     probe.samples(), cycles.cycles(), marks, notes);
         }
-    }
-
-    /**
-     * Waits out the run on the calling thread, updating the progress line (if any); returns the
-     * end time.
-     */
-    private static long watch(StressConfig settings, NodeClock clock, long originNs, long firstReleaseNs,
-            PlantProbe probe, CycleLog cycles, Progress line) {
-        long endNs = originNs + settings.durationNs();
-        long nowNs;
-        while ((nowNs = clock.nanoTime()) - endNs < 0) {
-            LockSupport.parkNanos(Math.min(PROGRESS_EVERY_NS, endNs - nowNs));
-            nowNs = clock.nanoTime();
-            if (line != null) {
-                line.update((nowNs - originNs) / 1e9, probe.lastTheta2Rad(),
-                        missesSoFar(nowNs, firstReleaseNs, settings.periodNs(), cycles));
-            }
-        }
-        if (line != null) {
-            line.finish(settings.durationNs() / 1e9, probe.lastTheta2Rad(),
-                    missesSoFar(endNs, firstReleaseNs, settings.periodNs(), cycles));
-        }
-        return endNs;
-    }
-
-    private static long missesSoFar(long nowNs, long firstReleaseNs, long periodNs, CycleLog cycles) {
-        return Math.max(0, RunSummary.releasesDue(firstReleaseNs, nowNs, periodNs) - cycles.onTimeCycles());
-    }
-
-    private static RealtimeScheduler newRealtimeScheduler() {
-        return new RealtimeScheduler(RealtimeSchedulerConfig.builder()
-                .name("rt")
-                .threadSchedulingRule(ThreadSchedulingRule.tableII())
-                .placementRule(new CriticalityDeadlinePlacement())
-                .build());
     }
 
     private static String realtimeNote(RealtimeScheduler scheduler) {
