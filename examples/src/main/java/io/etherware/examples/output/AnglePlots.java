@@ -32,6 +32,8 @@ public final class AnglePlots {
     public static final int WIDTH = 800;
     public static final int HEIGHT = 400;
 
+    /** The largest angle a plot shows: a turn and a half. */
+    private static final double MAX_ANGLE_RAD = 3 * Math.PI;
     private static final Color STRESS_SHADE = new Color(255, 170, 0, 70);
     private static final Color THRESHOLD = new Color(150, 150, 150);
     private static final Color UPGRADE_MARK = new Color(40, 150, 60);
@@ -43,17 +45,33 @@ public final class AnglePlots {
     private AnglePlots() {
     }
 
-    /** θ1 and θ2 of one run against time, stress activations shaded. */
+    /**
+     * θ1 and θ2 of one run against time, stress activations shaded, upgrades marked, on a scale
+     * that shows the fall threshold.
+     */
     public static XYChart jointAngles(ScenarioRun run, String title) {
+        return jointAngles(run, title, 0.6);
+    }
+
+    /**
+     * θ1 and θ2 of one run against time, on a scale of at least ±{@code minRangeRad} (the fall
+     * threshold is drawn when the scale reaches it).
+     */
+    public static XYChart jointAngles(ScenarioRun run, String title, double minRangeRad) {
         XYChart chart = baseChart(title);
         ProbeSamples samples = run.samples();
         double[] timeS = seconds(run, samples.timeNs());
-        double top = Math.max(0.6, 1.1 * Math.max(maxAbs(samples.theta1Rad()), samples.maxAbsTheta2Rad()));
+        // Up to one turn each way: beyond it (a fallen pendulum, an arm spinning at full torque)
+        // the lines leave the plot, and small angles stay readable.
+        double top = Math.min(MAX_ANGLE_RAD,
+                Math.max(minRangeRad, 1.1 * Math.max(maxAbs(samples.theta1Rad()), samples.maxAbsTheta2Rad())));
         shadeStress(chart, run, top);
         markUpgrades(chart, run, top);
-        line(chart, "θ1 arm (rad)", timeS, samples.theta1Rad(), new Color(120, 120, 120));
-        line(chart, "θ2 pendulum (rad)", timeS, samples.theta2Rad(), RUN_COLORS[1]);
-        thresholds(chart, run.durationS());
+        line(chart, "θ1 arm (rad)", timeS, clip(samples.theta1Rad(), 2 * top), new Color(120, 120, 120));
+        line(chart, "θ2 pendulum (rad)", timeS, clip(samples.theta2Rad(), 2 * top), RUN_COLORS[1]);
+        if (top >= RunSummary.FALL_THRESHOLD_RAD) {
+            thresholds(chart, run.durationS());
+        }
         chart.getStyler().setYAxisMin(-top).setYAxisMax(top);
         return chart;
     }

@@ -31,6 +31,8 @@ import org.slf4j.LoggerFactory;
 public final class UpgradeReport {
 
     private static final Logger LOG = LoggerFactory.getLogger(UpgradeReport.class);
+    /** Small enough to see the arm settle differently under V1 and V2. */
+    private static final double UPGRADE_PLOT_RANGE_RAD = 0.1;
 
     private UpgradeReport() {
     }
@@ -118,7 +120,8 @@ public final class UpgradeReport {
 
         try {
             written.addAll(AnglePlots.save(AnglePlots.jointAngles(run, String.format(Locale.ROOT,
-                    "Upgrade V1 (soft) → V2 (tight) at %.0f s: joint angles", run.secondsOf(outcome.requestNs()))),
+                    "Upgrade V1 (soft) → V2 (tight) at %.0f s: joint angles", run.secondsOf(outcome.requestNs())),
+                    UPGRADE_PLOT_RANGE_RAD),
                     out.resolve("upgrade")));
         } catch (IOException | RuntimeException | LinkageError | AWTError e) {
             LOG.error("could not draw the plot ({}); the CSV and summary are complete", e.toString(), e);
