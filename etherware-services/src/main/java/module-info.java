@@ -4,5 +4,7 @@ module io.etherware.services {
     requires transitive io.etherware.rt;
 
     exports io.etherware.services.management;
+    exports io.etherware.services.network;
     exports io.etherware.services.notifier;
+    exports io.etherware.services.time;
 }

@@ -9,7 +9,9 @@ import java.util.Set;
  * <p>A profile resolves by exact match first; otherwise it is a query (a role plus a subset of
  * attributes, see {@link Profile#matches}) that must match exactly one registered profile.
  * Local components are registered by the node when they are added; transports register
- * {@link RemoteRoute}s for profiles hosted elsewhere.
+ * {@link RemoteRoute}s for profiles hosted elsewhere. A local component added under a profile
+ * that a remote route holds displaces the route (the local component wins; the transport learns
+ * of it through its {@link Listener}).
  *
  * <p>Thread-safety: reads are lock-free (the kernel resolves on every send); registrations are
  * serialized and become visible to all threads at once.
@@ -41,4 +43,30 @@ public interface ProfileRegistry {
      * @throws IllegalArgumentException if the profile belongs to a local component
      */
     boolean unregisterRemote(Profile profile);
+
+    /**
+     * Adds a listener told of every later change of the registry. A transport uses it to announce
+     * the profiles its node hosts when they change.
+     */
+    void addListener(Listener listener);
+
+    /** Removes a listener; returns whether it was registered. */
+    boolean removeListener(Listener listener);
+
+    /**
+     * Told of each change of the registry: a profile registered ({@code before} null), removed
+     * ({@code after} null) or pointed at another endpoint (a relocation, a local component
+     * displacing a remote route).
+     *
+     * <p>Threading contract: called on the thread that made the change, after it took effect and
+     * while changes are still serialized, so calls come one at a time in the order of the
+     * changes. It must not block and must not change the registry itself: hand work to another
+     * thread. An exception it throws is logged and does not undo the change.
+     */
+    @FunctionalInterface
+    interface Listener {
+
+        /** {@code profile} went from {@code before} to {@code after}; either may be null. */
+        void onChanged(Profile profile, Endpoint before, Endpoint after);
+    }
 }

@@ -13,6 +13,7 @@ import io.etherware.core.message.Profile;
 import io.etherware.core.message.Text;
 import io.etherware.core.testing.Await;
 import io.etherware.core.testing.Num;
+import java.util.List;
 import java.util.concurrent.ExecutionException;
 import java.util.concurrent.ExecutorService;
 import java.util.concurrent.Executors;
@@ -137,5 +138,21 @@ class RemoteRouteTest {
         assertTrue(error.getMessage().contains("local component"), error.getMessage());
         assertTrue(nodeA.registry().unregisterRemote(ECHO));
         assertEquals(false, nodeA.registry().unregisterRemote(ECHO));
+    }
+
+    @Test
+    void shouldLetALocalComponentDisplaceARemoteRouteAndTellTheRegistryListener() {
+        var changes = new LinkedBlockingQueue<String>();
+        nodeA.registry().addListener((profile, before, after) -> changes.add(profile + ": "
+                + (before == null ? "none" : before.getClass().getSimpleName()) + " -> "
+                + (after == null ? "none" : after.getClass().getSimpleName())));
+        nodeA.start();
+        nodeA.add(ECHO, () -> (message, context) -> context.reply(message, new Text("local echo")));
+        assertEquals(new Text("local echo"), nodeA.requestBlocking(ECHO, new Text("?")).contents());
+        var error = assertThrows(IllegalArgumentException.class,
+                () -> nodeA.registry().registerRemote(ECHO, message -> { }));
+        assertTrue(error.getMessage().contains("a local component"), error.getMessage());
+        nodeA.remove(ECHO);
+        assertEquals(List.of("echo[node=b]: Remote -> Local", "echo[node=b]: Local -> none"), List.copyOf(changes));
     }
 }

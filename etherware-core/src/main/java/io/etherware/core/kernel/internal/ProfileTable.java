@@ -15,15 +15,21 @@ import java.util.Map;
 import java.util.Objects;
 import java.util.Set;
 import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.CopyOnWriteArrayList;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
 
 /**
  * The {@link ProfileRegistry}: a copy-on-write table, so resolution on every send is a volatile
  * read and a hash lookup, without locks. Successful query resolutions are cached per table
  * version (a change of the table starts a new cache).
  *
- * <p>Thread-safety: lookups from any thread without locking; changes serialized on this object.
+ * <p>Thread-safety: lookups from any thread without locking; changes serialized on this object,
+ * and listeners are called within that serialization.
  */
 public final class ProfileTable implements ProfileRegistry {
+
+    private static final Logger log = LoggerFactory.getLogger(ProfileTable.class);
 
     /** Queries cached per table version; a bound keeps hostile input from growing it forever. */
     private static final int MAX_CACHED_QUERIES = 1024;
@@ -36,6 +42,7 @@ public final class ProfileTable implements ProfileRegistry {
     }
 
     private volatile Table table = new Table(Map.of());
+    private final List<Listener> listeners = new CopyOnWriteArrayList<>();
 
     /** The endpoint {@code profile} resolves to, or null (then {@link #explainMiss} says why). */
     public Endpoint lookup(Profile profile) {
@@ -132,23 +139,39 @@ public final class ProfileTable implements ProfileRegistry {
         return unregister(profile, existing);
     }
 
+    @Override
+    public void addListener(Listener listener) {
+        listeners.add(Objects.requireNonNull(listener, "listener"));
+    }
+
+    @Override
+    public boolean removeListener(Listener listener) {
+        return listeners.remove(listener);
+    }
+
     /**
-     * Adds an endpoint.
+     * Adds an endpoint. A local endpoint displaces a remote route registered for the same profile:
+     * the component here wins over what a transport learned from elsewhere.
      *
-     * @throws IllegalArgumentException if the profile is already registered
+     * @throws IllegalArgumentException if the profile is already registered to a local component,
+     *                                  or a remote route is registered over an existing endpoint
      */
     public synchronized void register(Profile profile, Endpoint endpoint) {
         Objects.requireNonNull(profile, "profile");
         Objects.requireNonNull(endpoint, "endpoint");
         Endpoint existing = table.exact.get(profile);
-        if (existing != null) {
+        if (existing != null && !(existing instanceof Endpoint.Remote && endpoint instanceof Endpoint.Local)) {
             throw new IllegalArgumentException("profile '" + profile + "' is already registered ("
                     + (existing instanceof Endpoint.Local ? "a local component" : "a remote route")
                     + "); each profile names one component");
         }
+        if (existing != null) {
+            log.info("profile '{}': the local component displaces the remote route registered for it", profile);
+        }
         var copy = new HashMap<>(table.exact);
         copy.put(profile, endpoint);
         table = new Table(copy);
+        changed(profile, existing, endpoint);
     }
 
     /** Points {@code profile} at {@code replacement} if it still maps to {@code expected}. */
@@ -160,6 +183,7 @@ public final class ProfileTable implements ProfileRegistry {
         var copy = new HashMap<>(table.exact);
         copy.put(profile, replacement);
         table = new Table(copy);
+        changed(profile, expected, replacement);
         return true;
     }
 
@@ -171,6 +195,18 @@ public final class ProfileTable implements ProfileRegistry {
         var copy = new HashMap<>(table.exact);
         copy.remove(profile);
         table = new Table(copy);
+        changed(profile, expected, null);
         return true;
+    }
+
+    /** Tells the listeners of a change (called with the table's lock held, in change order). */
+    private void changed(Profile profile, Endpoint before, Endpoint after) {
+        for (Listener listener : listeners) {
+            try {
+                listener.onChanged(profile, before, after);
+            } catch (RuntimeException e) {
+                log.warn("profile registry listener {} failed on the change of '{}'", listener, profile, e);
+            }
+        }
     }
 }

@@ -2,6 +2,7 @@ package io.etherware.core.kernel.internal;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertNotNull;
 import static org.junit.jupiter.api.Assertions.assertNull;
 import static org.junit.jupiter.api.Assertions.assertSame;
 import static org.junit.jupiter.api.Assertions.assertThrows;
@@ -10,6 +11,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import io.etherware.core.kernel.Endpoint;
 import io.etherware.core.kernel.ProfileResolutionException;
 import io.etherware.core.message.Profile;
+import java.util.ArrayList;
 import java.util.List;
 import org.junit.jupiter.api.Test;
 
@@ -84,5 +86,43 @@ class ProfileTableTest {
         writer.join();
         assertEquals(0, misses);
         assertEquals(2_001, table.profiles().size());
+    }
+
+    /** One change as a listener saw it. */
+    private record Change(Profile profile, Endpoint before, Endpoint after) {
+    }
+
+    @Test
+    void shouldTellListenersOfEachChangeInOrder() {
+        var table = new ProfileTable();
+        var changes = new ArrayList<Change>();
+        table.addListener((profile, before, after) -> changes.add(new Change(profile, before, after)));
+        Profile x = Profile.of("x");
+        var first = route();
+        var second = route();
+        table.register(x, first);
+        assertTrue(table.replace(x, first, second));
+        assertFalse(table.replace(x, first, second), "a refused replace is no change");
+        assertTrue(table.unregister(x, second));
+        assertEquals(List.of(new Change(x, null, first), new Change(x, first, second), new Change(x, second, null)),
+                changes);
+    }
+
+    @Test
+    void shouldKeepChangingWhenAListenerThrowsAndStopTellingARemovedListener() {
+        var table = new ProfileTable();
+        var told = new ArrayList<Profile>();
+        ProfileTable.Listener failing = (profile, before, after) -> {
+            throw new IllegalStateException("listener bug");
+        };
+        ProfileTable.Listener recording = (profile, before, after) -> told.add(profile);
+        table.addListener(failing);
+        table.addListener(recording);
+        table.register(Profile.of("a"), route());
+        assertNotNull(table.lookup(Profile.of("a")), "the change stands despite the failing listener");
+        assertTrue(table.removeListener(recording));
+        assertFalse(table.removeListener(recording));
+        table.register(Profile.of("b"), route());
+        assertEquals(List.of(Profile.of("a")), told);
     }
 }

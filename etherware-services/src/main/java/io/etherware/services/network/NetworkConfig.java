@@ -1,0 +1,254 @@
+package io.etherware.services.network;
+
+import io.etherware.core.codec.MessageCodec;
+import io.etherware.services.time.NetworkTime;
+import java.net.InetAddress;
+import java.net.InetSocketAddress;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Objects;
+
+/**
+ * The configuration of a {@link NetworkMessenger}, validated once when built; every default is
+ * listed in {@link Builder}. Immutable.
+ *
+ * @param listenAddress             where to accept connections from other nodes (port 0: any free
+ *                                  port, see {@link NetworkMessenger#localAddress()})
+ * @param peers                     the nodes to dial and keep dialing
+ * @param connectionFactory         makes the sockets (the TLS seam)
+ * @param codec                     encodes and decodes messages; its contents types must match the
+ *                                  peers'
+ * @param maxFrameBytes             largest frame accepted from a peer (and sent to one)
+ * @param queueCapacity             messages waiting per peer before the least critical are dropped
+ * @param windowMessages            messages written to a peer and not yet acknowledged, at most
+ * @param heartbeatIntervalNs       a frame is sent at least this often on an idle connection
+ * @param heartbeatTimeoutNs        a connection on which nothing arrives this long is closed
+ * @param handshakeTimeoutNs        a connection must complete its handshake within this
+ * @param connectTimeoutNs          a dial gives up after this
+ * @param reconnectInitialBackoffNs first delay before redialing a lost or refused peer
+ * @param reconnectMaxBackoffNs     the delay doubles up to this
+ * @param reconnectJitter           each delay is lowered by a random part of up to this fraction
+ * @param peerDownGraceNs           how long messages for a disconnected peer wait for it to come
+ *                                  back before they are reported undeliverable and its profiles
+ *                                  are unrouted
+ * @param timeProbeIntervalNs       NetworkTime exchanges per peer, after the burst at connection
+ * @param timeProbeBurst            exchanges in quick succession when a connection opens
+ * @param timeWindowSize            exchanges NetworkTime's filter looks at
+ * @param maxConnections            connections, open or in handshake, beyond which new ones are
+ *                                  refused
+ * @param maxHops                   relays a message may make through nodes whose routes point on
+ *                                  (during a migration) before it is undeliverable
+ */
+public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddress> peers,
+                            ConnectionFactory connectionFactory, MessageCodec codec, int maxFrameBytes,
+                            int queueCapacity, int windowMessages, long heartbeatIntervalNs, long heartbeatTimeoutNs,
+                            long handshakeTimeoutNs, long connectTimeoutNs, long reconnectInitialBackoffNs,
+                            long reconnectMaxBackoffNs, double reconnectJitter, long peerDownGraceNs,
+                            long timeProbeIntervalNs, int timeProbeBurst, int timeWindowSize, int maxConnections,
+                            int maxHops) {
+
+    /** Default {@link #maxFrameBytes}: 1 MiB. */
+    public static final int DEFAULT_MAX_FRAME_BYTES = 1 << 20;
+    /** Smallest {@link #maxFrameBytes}: room for a handshake and a small message. */
+    public static final int MIN_FRAME_BYTES = 4096;
+
+    public NetworkConfig {
+        Objects.requireNonNull(listenAddress, "listenAddress=null: e.g. listen(new InetSocketAddress(\"0.0.0.0\", 7400))");
+        peers = List.copyOf(Objects.requireNonNull(peers, "peers=null"));
+        Objects.requireNonNull(connectionFactory, "connectionFactory=null: use ConnectionFactory.plain()");
+        requireRange("maxFrameBytes", maxFrameBytes, MIN_FRAME_BYTES, 256 << 20);
+        Objects.requireNonNull(codec, "codec=null: leave the default or give a MessageCodec");
+        requireRange("queueCapacity", queueCapacity, 1, 10_000_000);
+        requireRange("windowMessages", windowMessages, 4, 1 << 20);
+        requirePositive("heartbeatIntervalNs", heartbeatIntervalNs);
+        if (heartbeatTimeoutNs < 2 * heartbeatIntervalNs) {
+            throw new IllegalArgumentException("heartbeatTimeoutNs=" + heartbeatTimeoutNs + " must be at least twice"
+                    + " heartbeatIntervalNs=" + heartbeatIntervalNs + ", or a healthy idle peer looks dead");
+        }
+        requirePositive("handshakeTimeoutNs", handshakeTimeoutNs);
+        requirePositive("connectTimeoutNs", connectTimeoutNs);
+        requirePositive("reconnectInitialBackoffNs", reconnectInitialBackoffNs);
+        if (reconnectMaxBackoffNs < reconnectInitialBackoffNs) {
+            throw new IllegalArgumentException("reconnectMaxBackoffNs=" + reconnectMaxBackoffNs
+                    + " must be at least reconnectInitialBackoffNs=" + reconnectInitialBackoffNs);
+        }
+        if (!(reconnectJitter >= 0 && reconnectJitter < 1)) {
+            throw new IllegalArgumentException("reconnectJitter=" + reconnectJitter + " must be in [0, 1)");
+        }
+        requirePositive("peerDownGraceNs", peerDownGraceNs);
+        requirePositive("timeProbeIntervalNs", timeProbeIntervalNs);
+        requireRange("timeProbeBurst", timeProbeBurst, 0, 64);
+        requireRange("timeWindowSize", timeWindowSize, 1, 1024);
+        requireRange("maxConnections", maxConnections, 1, 100_000);
+        requireRange("maxHops", maxHops, 0, 32);
+    }
+
+    private static void requireRange(String field, long value, long min, long max) {
+        if (value < min || value > max) {
+            throw new IllegalArgumentException(field + "=" + value + " must be in [" + min + ", " + max + "]");
+        }
+    }
+
+    private static void requirePositive(String field, long valueNs) {
+        if (valueNs <= 0) {
+            throw new IllegalArgumentException(field + "=" + valueNs + " must be > 0");
+        }
+    }
+
+    /** A builder holding the defaults. */
+    public static Builder builder() {
+        return new Builder();
+    }
+
+    /**
+     * Builds a {@link NetworkConfig}. Defaults: listen on the loopback interface, any free port;
+     * no peers; plain TCP; a {@link MessageCodec} over the shared contents types whose document
+     * limit fits the frame limit; frames up to 1 MiB; 10,000 queued messages and 1,024
+     * unacknowledged per peer; heartbeat every 500 ms, dead after 3 s of silence; handshake within
+     * 2 s, dial within 2 s; redial after 50 ms doubling to 5 s, with 20 % jitter; a peer down for
+     * 10 s loses its messages and routes; NetworkTime burst of 8 exchanges, then one per second,
+     * filter window {@value NetworkTime#DEFAULT_WINDOW_SIZE}; 64 connections; 4 relays.
+     *
+     * <p>Not thread-safe; use it on one thread.
+     */
+    public static final class Builder {
+        private InetSocketAddress listenAddress = new InetSocketAddress(InetAddress.getLoopbackAddress(), 0);
+        private final List<InetSocketAddress> peers = new ArrayList<>();
+        private ConnectionFactory connectionFactory = ConnectionFactory.plain();
+        private MessageCodec codec;
+        private int maxFrameBytes = DEFAULT_MAX_FRAME_BYTES;
+        private int queueCapacity = 10_000;
+        private int windowMessages = 1024;
+        private long heartbeatIntervalNs = Duration.ofMillis(500).toNanos();
+        private long heartbeatTimeoutNs = Duration.ofSeconds(3).toNanos();
+        private long handshakeTimeoutNs = Duration.ofSeconds(2).toNanos();
+        private long connectTimeoutNs = Duration.ofSeconds(2).toNanos();
+        private long reconnectInitialBackoffNs = Duration.ofMillis(50).toNanos();
+        private long reconnectMaxBackoffNs = Duration.ofSeconds(5).toNanos();
+        private double reconnectJitter = 0.2;
+        private long peerDownGraceNs = Duration.ofSeconds(10).toNanos();
+        private long timeProbeIntervalNs = Duration.ofSeconds(1).toNanos();
+        private int timeProbeBurst = 8;
+        private int timeWindowSize = NetworkTime.DEFAULT_WINDOW_SIZE;
+        private int maxConnections = 64;
+        private int maxHops = 4;
+
+        Builder() {
+        }
+
+        /** Where to accept connections. */
+        public Builder listen(InetSocketAddress value) {
+            listenAddress = value;
+            return this;
+        }
+
+        /** Where to accept connections: {@code host:port}. */
+        public Builder listen(String host, int port) {
+            return listen(new InetSocketAddress(host, port));
+        }
+
+        /** A node to dial and keep connected. */
+        public Builder peer(InetSocketAddress value) {
+            peers.add(Objects.requireNonNull(value, "peer"));
+            return this;
+        }
+
+        /** A node to dial and keep connected: {@code host:port}. */
+        public Builder peer(String host, int port) {
+            return peer(new InetSocketAddress(host, port));
+        }
+
+        public Builder connectionFactory(ConnectionFactory value) {
+            connectionFactory = value;
+            return this;
+        }
+
+        public Builder codec(MessageCodec value) {
+            codec = value;
+            return this;
+        }
+
+        public Builder maxFrameBytes(int value) {
+            maxFrameBytes = value;
+            return this;
+        }
+
+        public Builder queueCapacity(int value) {
+            queueCapacity = value;
+            return this;
+        }
+
+        public Builder windowMessages(int value) {
+            windowMessages = value;
+            return this;
+        }
+
+        public Builder heartbeatInterval(Duration value) {
+            heartbeatIntervalNs = value.toNanos();
+            return this;
+        }
+
+        public Builder heartbeatTimeout(Duration value) {
+            heartbeatTimeoutNs = value.toNanos();
+            return this;
+        }
+
+        public Builder handshakeTimeout(Duration value) {
+            handshakeTimeoutNs = value.toNanos();
+            return this;
+        }
+
+        public Builder connectTimeout(Duration value) {
+            connectTimeoutNs = value.toNanos();
+            return this;
+        }
+
+        /** Redial delays: {@code initial}, doubling up to {@code max}, lowered by up to {@code jitter}. */
+        public Builder reconnectBackoff(Duration initial, Duration max, double jitter) {
+            reconnectInitialBackoffNs = initial.toNanos();
+            reconnectMaxBackoffNs = max.toNanos();
+            reconnectJitter = jitter;
+            return this;
+        }
+
+        public Builder peerDownGrace(Duration value) {
+            peerDownGraceNs = value.toNanos();
+            return this;
+        }
+
+        /** NetworkTime: {@code burst} exchanges at connection, then one every {@code interval}. */
+        public Builder timeProbes(Duration interval, int burst) {
+            timeProbeIntervalNs = interval.toNanos();
+            timeProbeBurst = burst;
+            return this;
+        }
+
+        public Builder timeWindowSize(int value) {
+            timeWindowSize = value;
+            return this;
+        }
+
+        public Builder maxConnections(int value) {
+            maxConnections = value;
+            return this;
+        }
+
+        public Builder maxHops(int value) {
+            maxHops = value;
+            return this;
+        }
+
+        /** The validated configuration. */
+        public NetworkConfig build() {
+            MessageCodec effectiveCodec = codec;
+            if (effectiveCodec == null && maxFrameBytes >= MIN_FRAME_BYTES) {
+                effectiveCodec = MessageCodec.builder().maxDocumentBytes(maxFrameBytes - 64).build();
+            }
+            return new NetworkConfig(listenAddress, peers, connectionFactory, effectiveCodec, maxFrameBytes,
+                    queueCapacity, windowMessages, heartbeatIntervalNs, heartbeatTimeoutNs, handshakeTimeoutNs,
+                    connectTimeoutNs, reconnectInitialBackoffNs, reconnectMaxBackoffNs, reconnectJitter, peerDownGraceNs,
+                    timeProbeIntervalNs, timeProbeBurst, timeWindowSize, maxConnections, maxHops);
+        }
+    }
+}

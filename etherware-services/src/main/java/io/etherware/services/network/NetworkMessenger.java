@@ -1,0 +1,149 @@
+package io.etherware.services.network;
+
+import io.etherware.core.kernel.EtherwareNode;
+import io.etherware.core.kernel.Kernel;
+import io.etherware.core.kernel.RemoteRoute;
+import io.etherware.core.message.Profile;
+import io.etherware.services.network.internal.Engine;
+import io.etherware.services.time.NetworkTime;
+import java.io.IOException;
+import java.io.UncheckedIOException;
+import java.net.InetSocketAddress;
+import java.time.Duration;
+import java.util.List;
+import java.util.Objects;
+import java.util.Optional;
+
+/**
+ * The NetworkMessenger service (paper Section III-C): joins this node to other nodes over TCP so
+ * that a component sends to a profile hosted elsewhere exactly as to a local one.
+ *
+ * <pre>{@code
+ * try (EtherwareNode node = EtherwareNode.builder().nodeId("plant-1").build().start();
+ *      NetworkMessenger net = NetworkMessenger.start(node, NetworkConfig.builder()
+ *              .listen("0.0.0.0", 7400).peer("controller-host", 7400).build())) {
+ *     net.awaitResolvable(Profile.of("controller"), Duration.ofSeconds(5));
+ *     node.send(Profile.of("controller"), new Text("hello"));
+ * }
+ * }</pre>
+ *
+ * <p>What it does. One TCP connection per pair of nodes (when both dial, the connection dialed
+ * by the lower node id is kept), with TCP_NODELAY; frames of a length, a type and a body, the
+ * messages themselves as the XML of {@link io.etherware.core.codec.MessageCodec} (see
+ * {@code NETWORK-PROTOCOL.md}). Each node announces the profiles it hosts when a connection opens
+ * and whenever they change; the others register a route for each in their registry, so
+ * {@code send} and requests just work, with the message's QoS unchanged on the receiving node.
+ * Messages to a peer wait in a bounded queue, most critical first; they are numbered and kept
+ * until the peer's kernel acknowledges them, so a lost connection loses nothing: the next one
+ * resumes where the peer stands. What cannot be delivered (peer restarted before acknowledging,
+ * gone for longer than the grace period, queue full of more critical messages) is reported to
+ * its sender as {@code undeliverable} (a request fails), except NONE and LOW messages shed from a
+ * full queue, which are counted. Time stamps of arriving messages are translated into this
+ * node's clock by {@link #networkTime()}.
+ *
+ * <p>Threading contract: every method may be called from any thread. Sending through the routes
+ * never blocks: on an idle connection the sending thread writes the frame itself (which the
+ * acknowledged-stream bookkeeping proves cannot block), otherwise it queues. The messenger runs
+ * on platform threads of its own: an acceptor, a control thread, and a reader and a writer per
+ * connection, so a slow or dead peer holds up nobody else. Start the node before the messenger
+ * (messages may arrive at once) and close the messenger before the node; a node that closes
+ * first closes its messenger too.
+ */
+public final class NetworkMessenger implements AutoCloseable {
+
+    private final Engine engine;
+
+    private NetworkMessenger(Engine engine) {
+        this.engine = engine;
+    }
+
+    /**
+     * Starts a messenger for {@code kernel}: binds the listen address, dials the peers.
+     *
+     * @throws UncheckedIOException if the listen address cannot be bound
+     */
+    public static NetworkMessenger start(Kernel kernel, NetworkConfig config) {
+        Objects.requireNonNull(kernel, "kernel");
+        Objects.requireNonNull(config, "config");
+        var engine = new Engine(kernel, config);
+        try {
+            engine.start();
+        } catch (IOException e) {
+            engine.close();
+            throw new UncheckedIOException("node '" + kernel.nodeId() + "': cannot listen on "
+                    + config.listenAddress() + ": " + e.getMessage(), e);
+        }
+        var messenger = new NetworkMessenger(engine);
+        if (kernel instanceof EtherwareNode node) {
+            // A node closed first takes its messenger along (off the closing thread).
+            node.closedFuture().thenRunAsync(messenger::close, task -> Thread.ofPlatform().daemon()
+                    .name("etherware-net-" + kernel.nodeId() + "-close").start(task));
+        }
+        return messenger;
+    }
+
+    /** The address this node accepts connections on (with the actual port if 0 was configured). */
+    public InetSocketAddress localAddress() {
+        return engine.localAddress();
+    }
+
+    /** Dials another node from now on and keeps it connected. */
+    public void addPeer(InetSocketAddress address) {
+        engine.addPeer(Objects.requireNonNull(address, "address"));
+    }
+
+    /** Waits until a connection to node {@code nodeId} is up; false on timeout. */
+    public boolean awaitConnected(String nodeId, Duration timeout) throws InterruptedException {
+        return engine.awaitConnected(nodeId, timeout);
+    }
+
+    /**
+     * Waits until {@code profile} resolves on this node (locally, or announced by a peer); false
+     * on timeout.
+     */
+    public boolean awaitResolvable(Profile profile, Duration timeout) throws InterruptedException {
+        return engine.awaitResolvable(profile, timeout);
+    }
+
+    /** The peers known to this node, connected or not, by node id. */
+    public List<PeerStatus> peers() {
+        return engine.peers();
+    }
+
+    /** One peer, if known. */
+    public Optional<PeerStatus> peer(String nodeId) {
+        return engine.peerStatus(nodeId);
+    }
+
+    /**
+     * A route to node {@code nodeId} for any profile, e.g. to relocate a component there
+     * ({@link Kernel#relocateAsync}). Its messages wait for the node like any other.
+     */
+    public RemoteRoute routeTo(String nodeId) {
+        return engine.routeTo(nodeId);
+    }
+
+    /** The clock offsets to the peers, and the time stamp translation. */
+    public NetworkTime networkTime() {
+        return engine.networkTime();
+    }
+
+    /** The counters now. */
+    public NetworkStats stats() {
+        return engine.stats();
+    }
+
+    /**
+     * Lets queued messages go for up to a second, closes every connection (saying BYE), unroutes
+     * the peers' profiles and reports unsent messages to their senders. Idempotent.
+     */
+    @Override
+    public void close() {
+        engine.close();
+    }
+
+    @Override
+    public String toString() {
+        return "NetworkMessenger[" + engine.localAddress() + "]";
+    }
+}

@@ -1,0 +1,52 @@
+package io.etherware.services.network;
+
+import java.util.Map;
+
+/**
+ * Counters of a {@link NetworkMessenger}, read at one moment (each exact; not read atomically
+ * together).
+ *
+ * @param nodeId               this node
+ * @param connectedPeers       peers with a connection now
+ * @param messagesSent         message frames written (first transmissions)
+ * @param messagesResent       message frames written again on a new connection because the old one
+ *                             ended before the peer acknowledged them
+ * @param messagesReceived     messages from peers handed to the kernel
+ * @param duplicatesDropped    message frames received twice (after a reconnection), dropped
+ * @param overflowDropped      messages of criticality NONE or LOW dropped because a peer's queue
+ *                             was full (shed load: counted, senders not told)
+ * @param undeliverable        messages the messenger could not deliver and reported: their senders
+ *                             got an {@code undeliverable} notice (or, without a sender, a log
+ *                             line): refused by a full queue, evicted MIDDLE messages, a peer gone
+ *                             for longer than the grace period or restarted before acknowledging,
+ *                             a message that does not encode or that the peer refused
+ * @param connectionsOpened    connections that completed the handshake and became a peer's
+ *                             connection
+ * @param handshakesFailed     connections closed before completing the handshake
+ * @param closes               connections ended, by reason (bad input among them, see
+ *                             {@link CloseReason#isBadInput()})
+ */
+public record NetworkStats(String nodeId, int connectedPeers, long messagesSent, long messagesResent,
+                           long messagesReceived, long duplicatesDropped, long overflowDropped, long undeliverable,
+                           long connectionsOpened, long handshakesFailed, Map<CloseReason, Long> closes) {
+
+    public NetworkStats {
+        closes = Map.copyOf(closes);
+    }
+
+    /** Connections ended for {@code reason}. */
+    public long closes(CloseReason reason) {
+        return closes.getOrDefault(reason, 0L);
+    }
+
+    /** Connections closed because the peer broke the protocol. */
+    public long badInputCloses() {
+        long sum = 0;
+        for (Map.Entry<CloseReason, Long> entry : closes.entrySet()) {
+            if (entry.getKey().isBadInput()) {
+                sum += entry.getValue();
+            }
+        }
+        return sum;
+    }
+}

@@ -1,0 +1,560 @@
+package io.etherware.services.network.internal;
+
+import io.etherware.core.message.Message;
+import io.etherware.core.message.MessageFormatException;
+import io.etherware.services.network.CloseReason;
+import io.etherware.services.time.TimeSample;
+import java.io.EOFException;
+import java.io.IOException;
+import java.io.InputStream;
+import java.net.Socket;
+import java.net.SocketTimeoutException;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.concurrent.TimeUnit;
+
+/**
+ * One TCP connection to another node: the handshake, then a reader (the thread that ran the
+ * handshake) and a writer thread. The reader hands messages to the kernel in stream order and
+ * answers control frames through the writer; the writer sends what the {@link Peer} has, most
+ * critical first, and flushes once per turn, so a burst leaves in few system calls.
+ *
+ * <p>A dead or slow peer blocks only this connection's two threads; senders only ever queue.
+ *
+ * <p>Thread-safety: the writer requests are guarded by the peer's lock; {@link #close} may be
+ * called from any thread, once takes effect.
+ */
+final class Connection implements Runnable {
+
+    /** How long a closing connection waits for its writer to say BYE, and drains the input. */
+    private static final long CLOSE_GRACE_MS = 500;
+    /** Most messages a writer takes in one turn. */
+    private static final int BATCH = 64;
+    private static final int DIRECT_BUDGET_MAX_BYTES = 64 * 1024;
+
+    private final Engine engine;
+    private final Socket socket;
+    private final Dialer dialer;
+    private final String remote;
+    private volatile Peer peer;
+    private Frame.Hello hello;
+    private FrameReader reader;
+    private FrameWriter writer;
+    private int peerMaxFrameBytes;
+    /** Unacknowledged bytes below which a sender may write directly without ever blocking. */
+    private int directBudgetBytes;
+    private volatile Thread readerThread;
+    private volatile Thread writerThread;
+    private volatile boolean closing;
+    private volatile boolean activated;
+    /** Guarded by this: {@link #close} runs once. */
+    private boolean closed;
+
+    /** What the writer is asked to send besides messages; guarded by the peer's lock. */
+    final WriterRequests requests = new WriterRequests();
+
+    private volatile long lastWriteNs;
+    private volatile long lastAckSent;
+    /** Bytes framed on this connection; written by whoever owns the output. */
+    private volatile long bytesWritten;
+    /** Where the last message frame written ends. */
+    private volatile long lastDataEndOffset;
+    /** Bytes the peer has certainly read: up to the last message frame, once all were acknowledged. */
+    private volatile long readByPeerOffset;
+
+    // Control thread only.
+    long nextProbeNs;
+    int probesSent;
+
+    /**
+     * @param dialer the dialer that opened it, or null for an accepted connection
+     */
+    Connection(Engine engine, Socket socket, Dialer dialer) {
+        this.engine = engine;
+        this.socket = socket;
+        this.dialer = dialer;
+        this.remote = String.valueOf(socket.getRemoteSocketAddress());
+        this.lastWriteNs = engine.nowNs();
+        this.nextProbeNs = lastWriteNs;
+    }
+
+    // ---------------------------------------------------------------- the reader thread
+
+    @Override
+    public void run() {
+        readerThread = Thread.currentThread();
+        try {
+            handshake();
+        } catch (ProtocolException e) {
+            engine.counters().handshakesFailed.increment();
+            close(e.reason(), e.getMessage());
+            return;
+        } catch (SocketTimeoutException e) {
+            engine.counters().handshakesFailed.increment();
+            close(CloseReason.HANDSHAKE_TIMEOUT, "no handshake within "
+                    + TimeUnit.NANOSECONDS.toMillis(engine.config().handshakeTimeoutNs()) + " ms");
+            return;
+        } catch (IOException e) {
+            engine.counters().handshakesFailed.increment();
+            close(closing ? CloseReason.SHUTDOWN : CloseReason.IO_ERROR, "handshake failed: " + e);
+            return;
+        }
+        if (!activated) {
+            return;
+        }
+        Thread writing = new ConnectionThread(this::writeLoop, "etherware-net-" + engine.nodeId() + "-write-" + peer.nodeId);
+        writerThread = writing;
+        writing.start();
+        readLoop();
+    }
+
+    private void handshake() throws IOException {
+        socket.setTcpNoDelay(true);
+        socket.setKeepAlive(true);
+        socket.setSoTimeout((int) Math.max(1, TimeUnit.NANOSECONDS.toMillis(engine.config().handshakeTimeoutNs())));
+        reader = new FrameReader(socket.getInputStream(), engine.config().maxFrameBytes());
+        writer = new FrameWriter(socket.getOutputStream());
+        writer.hello(new Frame.Hello(Frame.VERSION, engine.nodeId(), engine.incarnation(),
+                engine.kernel().clock().epochNanos(), engine.config().maxFrameBytes()));
+        writer.flush();
+        hello = reader.readHello();
+        long helloArrivedEpochNs = engine.kernel().clock().epochNanos();
+        if (hello.nodeId().equals(engine.nodeId())) {
+            throw new ProtocolException(CloseReason.BAD_HANDSHAKE, "the peer has this node's id '" + hello.nodeId()
+                    + "': node ids must be unique (or a node dialed itself)");
+        }
+        if (dialer != null) {
+            dialer.identified(hello.nodeId());
+        }
+        peerMaxFrameBytes = Math.min(hello.maxFrameBytes(), engine.config().maxFrameBytes());
+        // A quarter of the send buffer: the kernel counts its own overhead against the rest.
+        directBudgetBytes = Math.min(DIRECT_BUDGET_MAX_BYTES, socket.getSendBufferSize() / 4);
+        Peer known = engine.peer(hello.nodeId());
+        peer = known;
+        writer.resume(known.resumeState());
+        writer.flush();
+        Frame second = reader.next();
+        if (!(second instanceof Frame.Resume theirs)) {
+            throw new ProtocolException(CloseReason.BAD_HANDSHAKE, "expected RESUME after HELLO, got "
+                    + second.getClass().getSimpleName());
+        }
+        bytesWritten = writer.bytes();
+        Thread.currentThread().setName("etherware-net-" + engine.nodeId() + "-read-" + known.nodeId);
+        activated = engine.activate(this, hello, theirs, helloArrivedEpochNs);
+        socket.setSoTimeout((int) Math.max(1, TimeUnit.NANOSECONDS.toMillis(engine.config().heartbeatTimeoutNs())));
+    }
+
+    private void readLoop() {
+        try {
+            while (!closing) {
+                switch (reader.next()) {
+                    case Frame.Data data -> onData(data);
+                    case Frame.Ack ack -> peer.onAck(this, ack.count());
+                    case Frame.Heartbeat heartbeat -> { }
+                    case Frame.Announce announced -> {
+                        if (peer.active() == this) {
+                            engine.routes().announce(peer, announced.profiles());
+                            engine.signalStateChanged();
+                        }
+                    }
+                    case Frame.TimeRequest request -> requestTimeReply(request.t1(), engine.kernel().clock().epochNanos());
+                    case Frame.TimeReply reply -> engine.networkTime().onExchange(peer.nodeId,
+                            new TimeSample(reply.t1(), reply.t2(), reply.t3(), engine.kernel().clock().epochNanos()));
+                    case Frame.Reject rejected -> {
+                        Outgoing refused = peer.onReject(this, rejected.seq());
+                        if (refused != null) {
+                            engine.lost(refused.message(), "node '" + peer.nodeId + "' refused it: " + rejected.reason());
+                        }
+                    }
+                    case Frame.Bye goodbye -> {
+                        close(CloseReason.PEER_CLOSED, "node '" + peer.nodeId + "' closed the connection: "
+                                + CloseReason.ofCode(goodbye.code()) + ": " + goodbye.text());
+                        return;
+                    }
+                    case Frame.Hello unexpected -> throw new ProtocolException(CloseReason.MALFORMED_FRAME, "HELLO again");
+                    case Frame.Resume unexpected -> throw new ProtocolException(CloseReason.MALFORMED_FRAME,
+                            "RESUME after the handshake");
+                }
+            }
+        } catch (MalformedMessageException e) {
+            peer.lock.lock();
+            try {
+                requests.reject(new Frame.Reject(e.seq, e.getMessage()));
+            } finally {
+                peer.lock.unlock();
+            }
+            close(CloseReason.MALFORMED_MESSAGE, e.getMessage());
+        } catch (ProtocolException e) {
+            close(e.reason(), e.getMessage());
+        } catch (SocketTimeoutException e) {
+            close(CloseReason.HEARTBEAT_TIMEOUT, "nothing from node '" + peer.nodeId + "' for "
+                    + TimeUnit.NANOSECONDS.toMillis(engine.config().heartbeatTimeoutNs()) + " ms");
+        } catch (EOFException e) {
+            close(CloseReason.PEER_CLOSED, "node '" + peer.nodeId + "' closed the connection");
+        } catch (IOException e) {
+            close(closing ? CloseReason.SHUTDOWN : CloseReason.IO_ERROR, "reading from node '" + peer.nodeId
+                    + "' failed: " + e);
+        }
+    }
+
+    /** A message frame whose XML did not decode: refused, and the connection closes. */
+    private static final class MalformedMessageException extends ProtocolException {
+        final long seq;
+
+        MalformedMessageException(long seq, MessageFormatException cause) {
+            super(CloseReason.MALFORMED_MESSAGE, "message frame " + seq + " does not decode: " + cause.getMessage(), cause);
+            this.seq = seq;
+        }
+    }
+
+    private void onData(Frame.Data data) throws ProtocolException {
+        peer.onAck(this, data.ack());
+        boolean delivered = peer.deliverInOrder(this, data.seq(), () -> {
+            Message message;
+            try {
+                message = engine.codec().decode(data.xml());
+            } catch (MessageFormatException e) {
+                throw new MalformedMessageException(data.seq(), e);
+            }
+            engine.deliverLocally(engine.networkTime().toLocal(peer.nodeId, message), data.hops());
+        });
+        if (!delivered) {
+            if (peer.active() != this) {
+                return; // replaced: the new connection carries the stream on, and closes this one
+            }
+            engine.counters().duplicates.increment();
+        } else if (peer.inboundCount() - lastAckSent >= engine.config().windowMessages() / 4) {
+            requestAck();
+        }
+    }
+
+    // ---------------------------------------------------------------- the writer thread
+
+    private void writeLoop() {
+        try {
+            while (true) {
+                WriterTurn turn = peer.nextTurn(this, BATCH);
+                if (turn == null) {
+                    return;
+                }
+                try {
+                    write(turn);
+                    if (turn.isLast()) {
+                        socket.shutdownOutput();
+                        return;
+                    }
+                } finally {
+                    peer.endTurn();
+                }
+            }
+        } catch (IOException e) {
+            if (!closing) {
+                close(CloseReason.IO_ERROR, "writing to node '" + peer.nodeId + "' failed: " + e);
+            }
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            close(CloseReason.SHUTDOWN, "writer interrupted");
+        }
+    }
+
+    private void write(WriterTurn turn) throws IOException {
+        long ackNow = peer.inboundCount();
+        boolean carriedAck = false;
+        if (turn.reject != null) {
+            writer.reject(turn.reject.seq(), turn.reject.reason());
+        }
+        if (turn.announce != null) {
+            writer.announce(turn.announce);
+        }
+        for (InFlight again : turn.resend) {
+            writer.data(again.seq(), ackNow, again.outgoing().hops(), again.xml());
+            engine.counters().resent.increment();
+            carriedAck = true;
+        }
+        if (carriedAck) {
+            lastDataEndOffset = writer.bytes();
+        }
+        if (!turn.fresh.isEmpty()) {
+            carriedAck |= writeFresh(turn.fresh, ackNow);
+        }
+        if (turn.ack && !carriedAck) {
+            writer.ack(ackNow);
+            carriedAck = true;
+        }
+        if (carriedAck) {
+            lastAckSent = ackNow;
+        }
+        if (turn.heartbeat) {
+            writer.heartbeat();
+        }
+        if (turn.probe || !turn.timeReplies.isEmpty()) {
+            // Time frames go out alone, stamped just before they leave: queued bytes ahead of
+            // them would count as path delay.
+            writer.flush();
+            for (long[] request : turn.timeReplies) {
+                writer.timeReply(request[0], request[1], engine.kernel().clock().epochNanos());
+                writer.flush();
+            }
+            if (turn.probe) {
+                writer.timeRequest(engine.kernel().clock().epochNanos());
+            }
+        }
+        if (turn.bye != null) {
+            writer.bye(turn.bye.code(), turn.bye.text());
+        }
+        writer.flush();
+        bytesWritten = writer.bytes();
+        lastWriteNs = engine.nowNs();
+    }
+
+    /** Encodes, numbers and writes new messages; reports those that cannot go. */
+    private boolean writeFresh(List<Outgoing> fresh, long ackNow) throws IOException {
+        var encoded = new ArrayList<Outgoing>(fresh.size());
+        var xml = new ArrayList<byte[]>(fresh.size());
+        List<String> refusals = null;
+        List<Outgoing> refused = null;
+        for (Outgoing outgoing : fresh) {
+            if (outgoing.xml() != null) { // encoded by its sender, checked against the frame limit
+                encoded.add(outgoing);
+                xml.add(outgoing.xml());
+                continue;
+            }
+            String problem;
+            try {
+                byte[] document = engine.codec().encode(outgoing.message());
+                if (document.length + Frame.DATA_OVERHEAD_BYTES <= peerMaxFrameBytes) {
+                    encoded.add(outgoing);
+                    xml.add(document);
+                    continue;
+                }
+                problem = "its frame of " + (document.length + Frame.DATA_OVERHEAD_BYTES) + " bytes is over the "
+                        + peerMaxFrameBytes + " bytes node '" + peer.nodeId + "' accepts";
+            } catch (MessageFormatException e) {
+                problem = "it does not encode: " + e.getMessage();
+            }
+            if (refused == null) {
+                refused = new ArrayList<>();
+                refusals = new ArrayList<>();
+            }
+            refused.add(outgoing);
+            refusals.add(problem);
+        }
+        if (refused != null) {
+            for (int i = 0; i < refused.size(); i++) {
+                engine.lost(refused.get(i).message(), refusals.get(i));
+            }
+        }
+        List<InFlight> assigned = peer.assign(this, encoded, xml);
+        if (assigned == null) {
+            return false;
+        }
+        for (InFlight entry : assigned) {
+            writer.data(entry.seq(), ackNow, entry.outgoing().hops(), entry.xml());
+        }
+        lastDataEndOffset = writer.bytes();
+        engine.counters().sent.add(assigned.size());
+        return !assigned.isEmpty();
+    }
+
+    /**
+     * Writes one message frame on the calling thread, which owns the output meanwhile (see
+     * {@link Peer#enqueue}).
+     */
+    void writeDirect(InFlight entry) throws IOException {
+        long ackNow = peer.inboundCount();
+        writer.data(entry.seq(), ackNow, entry.outgoing().hops(), entry.xml());
+        writer.flush();
+        lastDataEndOffset = writer.bytes();
+        bytesWritten = lastDataEndOffset;
+        lastAckSent = ackNow;
+        lastWriteNs = engine.nowNs();
+        engine.counters().sent.increment();
+    }
+
+    int peerMaxFrameBytes() {
+        return peerMaxFrameBytes;
+    }
+
+    /**
+     * Whether a sender may write {@code frameBytes} more directly: the bytes the peer may not have
+     * read yet (everything after the last message frame it acknowledged, control frames included)
+     * plus these stay within a quarter of the socket's send buffer, so the write cannot block
+     * even on a peer that stopped reading.
+     */
+    boolean fitsDirectWrite(int frameBytes) {
+        return bytesWritten - readByPeerOffset + frameBytes <= directBudgetBytes;
+    }
+
+    /**
+     * Every message frame written so far is acknowledged (peer's lock held): the peer has read
+     * the stream up to the last of them. A frame still being written ends later, so this errs
+     * on the safe side.
+     */
+    void allDataAcknowledged() {
+        readByPeerOffset = Math.max(readByPeerOffset, lastDataEndOffset);
+    }
+
+    // ---------------------------------------------------------------- writer requests (under peer.lock)
+
+    long heartbeatDueNs() {
+        return lastWriteNs + engine.config().heartbeatIntervalNs();
+    }
+
+    private void requestTimeReply(long t1, long t2) {
+        peer.lock.lock();
+        try {
+            requests.timeReply(t1, t2);
+            peer.work.signal();
+        } finally {
+            peer.lock.unlock();
+        }
+    }
+
+    void requestAck() {
+        request(requests::requestAck);
+    }
+
+    void requestProbe() {
+        request(requests::requestProbe);
+    }
+
+    private void request(Runnable flag) {
+        Peer owner = peer;
+        owner.lock.lock();
+        try {
+            flag.run();
+            owner.work.signal();
+        } finally {
+            owner.lock.unlock();
+        }
+    }
+
+    /** Whether acknowledgements are owed: messages delivered since the last one sent. */
+    boolean owesAck() {
+        return peer.inboundCount() > lastAckSent;
+    }
+
+    // ---------------------------------------------------------------- identity and closing
+
+    /** The node that dialed this connection. */
+    String initiatorId() {
+        return dialer != null ? engine.nodeId() : hello.nodeId();
+    }
+
+    /**
+     * The one-connection rule: keep the connection dialed by the node with the lower id; between
+     * two dialed by the same node, the newer (the older is likely dead, which is why it redialed).
+     */
+    boolean isPreferredOver(Connection other) {
+        String lower = engine.nodeId().compareTo(peer.nodeId) < 0 ? engine.nodeId() : peer.nodeId;
+        boolean mine = initiatorId().equals(lower);
+        boolean theirs = other.initiatorId().equals(lower);
+        return mine || !theirs;
+    }
+
+    Dialer dialer() {
+        return dialer;
+    }
+
+    Peer peer() {
+        return peer;
+    }
+
+    String remote() {
+        return remote;
+    }
+
+    boolean isActivated() {
+        return activated;
+    }
+
+    /**
+     * Ends the connection, once: counted and logged by reason; the peer's messages wait for the
+     * next connection; a BYE says why (unless the peer closed first) before the socket closes.
+     */
+    void close(CloseReason reason, String detail) {
+        synchronized (this) {
+            if (closed) {
+                return;
+            }
+            closed = true;
+        }
+        closing = true;
+        Peer owner = peer;
+        boolean wasActive = false;
+        boolean sayBye = reason != CloseReason.PEER_CLOSED;
+        if (owner != null) {
+            owner.lock.lock();
+            try {
+                if (sayBye) {
+                    requests.requestBye(reason, detail);
+                }
+                owner.work.signalAll();
+            } finally {
+                owner.lock.unlock();
+            }
+            wasActive = owner.deactivate(this);
+        }
+        engine.connectionClosed(this, reason, detail, wasActive);
+        Thread writing = writerThread;
+        Thread current = Thread.currentThread();
+        if (writing != null && writing != current) {
+            try {
+                writing.join(CLOSE_GRACE_MS);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+        } else if (writing == null && current == readerThread && sayBye && writer != null) {
+            try {
+                Frame.Reject refusal = requests.pendingReject(); // this thread set it, before any writer
+                if (refusal != null) {
+                    writer.reject(refusal.seq(), refusal.reason());
+                }
+                writer.bye(reason.code(), detail);
+                writer.flush();
+                socket.shutdownOutput();
+            } catch (IOException | RuntimeException e) {
+                // The peer is gone or never was one; the socket closes below either way.
+            }
+        }
+        if (current == readerThread && (reason.isBadInput() || reason == CloseReason.DUPLICATE)) {
+            drainInput();
+        }
+        try {
+            socket.close();
+        } catch (IOException e) {
+            // Closing anyway.
+        }
+        engine.connectionEnded(this, wasActive, reason);
+    }
+
+    /**
+     * Reads and discards what the peer still sends, until it closes or the grace runs out: closing
+     * with unread input would reset the connection and could destroy the BYE before it is read.
+     */
+    private void drainInput() {
+        long deadlineNs = engine.nowNs() + TimeUnit.MILLISECONDS.toNanos(CLOSE_GRACE_MS);
+        try {
+            InputStream input = socket.getInputStream();
+            byte[] sink = new byte[4096];
+            while (true) {
+                long leftMs = TimeUnit.NANOSECONDS.toMillis(deadlineNs - engine.nowNs());
+                if (leftMs <= 0) {
+                    return;
+                }
+                socket.setSoTimeout((int) leftMs);
+                if (input.read(sink) < 0) {
+                    return;
+                }
+            }
+        } catch (IOException e) {
+            // Timed out or reset: done draining.
+        }
+    }
+
+    @Override
+    public String toString() {
+        return "connection " + engine.nodeId() + "<->" + (hello != null ? hello.nodeId() : "?") + " (" + remote
+                + (dialer != null ? ", dialed" : ", accepted") + ")";
+    }
+}

@@ -1,0 +1,553 @@
+package io.etherware.services.network.internal;
+
+import io.etherware.core.codec.MessageCodec;
+import io.etherware.core.kernel.Kernel;
+import io.etherware.core.kernel.ProfileResolutionException;
+import io.etherware.core.kernel.RemoteRoute;
+import io.etherware.core.kernel.RequestFailed;
+import io.etherware.core.kernel.Undeliverable;
+import io.etherware.core.message.Criticality;
+import io.etherware.core.message.Message;
+import io.etherware.core.message.Profile;
+import io.etherware.services.network.CloseReason;
+import io.etherware.services.network.NetworkConfig;
+import io.etherware.services.network.NetworkStats;
+import io.etherware.services.network.PeerStatus;
+import io.etherware.services.time.NetworkTime;
+import java.io.IOException;
+import java.net.InetSocketAddress;
+import java.net.ServerSocket;
+import java.net.Socket;
+import java.security.SecureRandom;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.Comparator;
+import java.util.List;
+import java.util.Optional;
+import java.util.Set;
+import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.ConcurrentLinkedQueue;
+import java.util.concurrent.CopyOnWriteArrayList;
+import java.util.concurrent.ScheduledThreadPoolExecutor;
+import java.util.concurrent.ThreadLocalRandom;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicLong;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+/**
+ * The machinery behind {@link io.etherware.services.network.NetworkMessenger}: the listening
+ * socket and its acceptor thread, the dialers, the peers and their connections, the routes, the
+ * announcements of this node's profiles, and a control thread that ticks every
+ * {@value #TICK_MS} ms for redialing, delayed acknowledgements, time probes and expiry.
+ *
+ * <p>Threads (all platform threads): one acceptor, one control, and per connection a reader and
+ * a writer. Senders never block: they queue at a {@link Peer}.
+ *
+ * <p>Thread-safety: all methods may be called from any thread.
+ */
+public final class Engine {
+
+    private static final Logger log = LoggerFactory.getLogger("io.etherware.services.network.NetworkMessenger");
+    static final long TICK_MS = 10;
+    private static final long BURST_SPACING_NS = TimeUnit.MILLISECONDS.toNanos(20);
+    private static final long CLOSE_DRAIN_NS = TimeUnit.SECONDS.toNanos(1);
+
+    private final Kernel kernel;
+    private final NetworkConfig config;
+    private final String nodeId;
+    private final long incarnation;
+    private final NetworkTime networkTime;
+    private final Counters counters = new Counters();
+    private final RouteTable routes;
+    private final ConcurrentHashMap<String, Peer> peers = new ConcurrentHashMap<>();
+    private final Set<Connection> connections = ConcurrentHashMap.newKeySet();
+    private final List<Dialer> dialers = new CopyOnWriteArrayList<>();
+    private final ConcurrentLinkedQueue<Profile> toReconcile = new ConcurrentLinkedQueue<>();
+    private final ScheduledThreadPoolExecutor control;
+    private final Object stateChanged = new Object();
+    private final AtomicLong overflowLogged = new AtomicLong();
+    private ServerSocket server;
+    private Thread acceptor;
+    private volatile boolean closed;
+
+    private final Announcer announcer;
+
+    public Engine(Kernel kernel, NetworkConfig config) {
+        this.kernel = kernel;
+        this.config = config;
+        this.nodeId = kernel.nodeId();
+        this.incarnation = nonZero(new SecureRandom().nextLong());
+        this.networkTime = new NetworkTime(kernel.clock(), config.timeWindowSize(), NetworkTime.DEFAULT_MIN_DRIFT_SPAN);
+        this.routes = new RouteTable(kernel.registry());
+        this.control = new ScheduledThreadPoolExecutor(1, task -> {
+            Thread thread = new Thread(task, "etherware-net-" + nodeId + "-control");
+            thread.setDaemon(true);
+            return thread;
+        });
+        this.announcer = new Announcer(kernel, peers.values(), toReconcile);
+    }
+
+    // ---------------------------------------------------------------- lifecycle
+
+    /** Binds, starts accepting and dialing, and announces this node's profiles. */
+    public void start() throws IOException {
+        announcer.start();
+        server = config.connectionFactory().listen(config.listenAddress());
+        acceptor = new Thread(this::acceptLoop, "etherware-net-" + nodeId + "-accept");
+        acceptor.setDaemon(true);
+        acceptor.start();
+        for (InetSocketAddress address : config.peers()) {
+            dialers.add(new Dialer(this, address));
+        }
+        control.scheduleWithFixedDelay(this::tick, 0, TICK_MS, TimeUnit.MILLISECONDS);
+        log.info("node {}: network messenger listening on {}, dialing {}", nodeId, localAddress(), config.peers());
+    }
+
+    /** Dials another node from now on, and keeps it connected. */
+    public void addPeer(InetSocketAddress address) {
+        if (closed) {
+            throw new IllegalStateException("the network messenger of node '" + nodeId + "' is closed");
+        }
+        dialers.add(new Dialer(this, address));
+    }
+
+    public InetSocketAddress localAddress() {
+        if (server == null) {
+            throw new IllegalStateException("node '" + nodeId + "': the network messenger is not listening");
+        }
+        return (InetSocketAddress) server.getLocalSocketAddress();
+    }
+
+    /**
+     * Lets queued messages go for up to a second, says BYE on every connection, and reports what
+     * could not be sent to its senders. Idempotent.
+     */
+    public void close() {
+        if (closed) {
+            return;
+        }
+        long deadlineNs = nowNs() + CLOSE_DRAIN_NS;
+        while (hasBacklog() && nowNs() - deadlineNs < 0) {
+            sleepMs(1);
+        }
+        closed = true;
+        announcer.stop();
+        control.shutdownNow();
+        if (server != null) {
+            try {
+                server.close();
+            } catch (IOException e) {
+                log.debug("node {}: closing the server socket: {}", nodeId, e.toString());
+            }
+        }
+        for (Connection connection : List.copyOf(connections)) {
+            connection.close(CloseReason.SHUTDOWN, "node '" + nodeId + "' is closing its network messenger");
+        }
+        for (Peer peer : peers.values()) {
+            for (Outgoing lost : peer.close()) {
+                lost(lost.message(), "the network messenger of node '" + nodeId + "' closed before sending it");
+            }
+            routes.forget(peer);
+        }
+        join(acceptor);
+        try {
+            control.awaitTermination(1, TimeUnit.SECONDS);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
+        log.info("node {}: network messenger closed: {}", nodeId, stats());
+        signalStateChanged();
+    }
+
+    private boolean hasBacklog() {
+        for (Peer peer : peers.values()) {
+            int[] backlog = peer.backlog();
+            if (peer.isConnected() && backlog[0] + backlog[1] > 0) {
+                return true;
+            }
+        }
+        return false;
+    }
+
+    private void acceptLoop() {
+        while (!closed) {
+            Socket socket;
+            try {
+                socket = server.accept();
+            } catch (IOException e) {
+                if (!closed) {
+                    log.warn("node {}: accepting a connection failed: {}", nodeId, e.toString());
+                    sleepMs(TICK_MS);
+                }
+                continue;
+            }
+            Connection connection = open(socket, null);
+            if (connection != null) {
+                new ConnectionThread(connection, "etherware-net-" + nodeId + "-accepted-" + connection.remote()).start();
+            }
+        }
+    }
+
+    /** A connection over {@code socket}, or null (socket closed) if there are too many or we close. */
+    Connection open(Socket socket, Dialer dialer) {
+        if (closed || connections.size() >= config.maxConnections()) {
+            log.warn("node {}: refusing a connection from {}: {}", nodeId, socket.getRemoteSocketAddress(),
+                    closed ? "closing" : "maxConnections=" + config.maxConnections() + " reached");
+            try {
+                socket.close();
+            } catch (IOException e) {
+                // Refused anyway.
+            }
+            return null;
+        }
+        var connection = new Connection(this, socket, dialer);
+        connections.add(connection);
+        return connection;
+    }
+
+    // ---------------------------------------------------------------- connections
+
+    Peer peer(String peerId) {
+        return peers.computeIfAbsent(peerId, id -> new Peer(id, this));
+    }
+
+    boolean isConnected(String peerId) {
+        Peer peer = peers.get(peerId);
+        return peer != null && peer.isConnected();
+    }
+
+    /** After the handshake: make the connection the peer's, or close it as a duplicate. */
+    boolean activate(Connection connection, Frame.Hello hello, Frame.Resume theirs, long helloArrivedEpochNs)
+            throws ProtocolException {
+        Peer peer = connection.peer();
+        Peer.Activation activation = peer.activate(connection, hello, theirs);
+        if (!activation.accepted()) {
+            if (closed) {
+                connection.close(CloseReason.SHUTDOWN, "node '" + nodeId + "' is closing its network messenger");
+            } else if (peer.isConnected()) {
+                connection.close(CloseReason.DUPLICATE, "node '" + peer.nodeId + "' is connected already;"
+                        + " keeping the connection dialed by '" + lowerId(peer.nodeId) + "'");
+            } else {
+                connection.close(CloseReason.IO_ERROR, "node '" + peer.nodeId + "' expired during the handshake;"
+                        + " redial");
+            }
+            return false;
+        }
+        counters.opened.increment();
+        if (activation.restarted()) {
+            log.info("node {}: node '{}' restarted (new incarnation)", nodeId, peer.nodeId);
+            networkTime.forget(peer.nodeId);
+        }
+        networkTime.onHandshake(peer.nodeId, hello.epochNs(), helloArrivedEpochNs);
+        if (connection.dialer() != null) {
+            connection.dialer().activated(peer.nodeId);
+        }
+        log.info("node {}: connected to node '{}' ({})", nodeId, peer.nodeId, connection);
+        if (activation.loser() != null) {
+            activation.loser().close(CloseReason.DUPLICATE, "replaced by the connection dialed by '"
+                    + connection.initiatorId() + "'");
+        }
+        for (InFlight entry : activation.lost()) {
+            lost(entry.outgoing().message(), "node '" + peer.nodeId + "' restarted before acknowledging it;"
+                    + " it may or may not have been handled");
+        }
+        signalStateChanged();
+        return true;
+    }
+
+    private String lowerId(String peerId) {
+        return nodeId.compareTo(peerId) < 0 ? nodeId : peerId;
+    }
+
+    /** Counts and logs the end of a connection (the connection's own thread or a closer). */
+    void connectionClosed(Connection connection, CloseReason reason, String detail, boolean wasActive) {
+        counters.closed(reason);
+        if (reason.isBadInput()) {
+            log.warn("node {}: closed {} for bad input: {}: {}", nodeId, connection, reason, detail);
+        } else if (reason == CloseReason.SHUTDOWN || !wasActive) {
+            log.debug("node {}: closed {}: {}: {}", nodeId, connection, reason, detail);
+        } else {
+            log.info("node {}: closed {}: {}: {}", nodeId, connection, reason, detail);
+        }
+    }
+
+    /** Closes a connection off the calling thread (a sender must not wait for the close). */
+    void closeLater(Connection connection, CloseReason reason, String detail) {
+        try {
+            control.execute(() -> connection.close(reason, detail));
+        } catch (java.util.concurrent.RejectedExecutionException e) {
+            // The messenger is closing and closes every connection itself.
+        }
+    }
+
+    /** The connection's socket is closed. */
+    void connectionEnded(Connection connection, boolean wasActive, CloseReason reason) {
+        connections.remove(connection);
+        if (connection.dialer() != null) {
+            connection.dialer().ended(connection.isActivated(), reason);
+        }
+        if (wasActive) {
+            signalStateChanged();
+        }
+    }
+
+    // ---------------------------------------------------------------- messages
+
+    /** Hands a message from a peer to the kernel (its reader thread), counting the relay hops. */
+    void deliverLocally(Message message, int hops) {
+        var reader = (ConnectionThread) Thread.currentThread();
+        reader.inboundHops = hops;
+        try {
+            kernel.send(message);
+            counters.received.increment();
+        } catch (RuntimeException e) {
+            counters.undeliverable.increment();
+            log.warn("node {}: the kernel refused message {} to '{}' from the network: {}", nodeId,
+                    message.messageId(), message.profile(), e.toString());
+        } finally {
+            reader.inboundHops = -1;
+        }
+    }
+
+    /**
+     * A message that cannot be delivered: counted, and its sender gets an {@link Undeliverable}
+     * notice (a request of the sender's then fails); without a sender, a log line.
+     */
+    void lost(Message message, String reason) {
+        counters.undeliverable.increment();
+        if (message.sender() == null || message.contents() instanceof Undeliverable
+                || message.contents() instanceof RequestFailed) {
+            log.warn("node {}: message {} to '{}' is lost: {}", nodeId, message.messageId(), message.profile(), reason);
+            return;
+        }
+        log.debug("node {}: message {} to '{}' is undeliverable: {}", nodeId, message.messageId(), message.profile(),
+                reason);
+        try {
+            kernel.send(new Message(message.sender(), kernel.profile(), kernel.clock().epochNanos(), message.qos(),
+                    new Undeliverable(message.profile().toString(), message.messageId().toString(), reason),
+                    kernel.newMessageId(), message.messageId()));
+        } catch (RuntimeException e) {
+            log.warn("node {}: could not tell '{}' that message {} is lost ({}): {}", nodeId, message.sender(),
+                    message.messageId(), reason, e.toString());
+        }
+    }
+
+    /** A message dropped from a full queue: NONE and LOW are shed (counted); others are reported. */
+    void dropped(Message message, String peerId, String reason) {
+        if (message.qos().criticality().compareTo(Criticality.LOW) > 0) {
+            lost(message, reason);
+            return;
+        }
+        counters.overflowDropped.increment();
+        long count = overflowLogged.incrementAndGet();
+        if (count == 1 || count % 10_000 == 0) {
+            log.warn("node {}: shedding {} messages to node '{}' ({} so far): {}", nodeId,
+                    message.qos().criticality(), peerId, count, reason);
+        }
+    }
+
+    /** A route to whatever profile a peer hosts, e.g. for a migration to that node. */
+    public RemoteRoute routeTo(String peerId) {
+        if (!Profile.isName(peerId) || peerId.equals(nodeId)) {
+            throw new IllegalArgumentException("peerId='" + peerId + "' must be another node's id");
+        }
+        Peer peer = peer(peerId);
+        return new RemoteRoute() {
+            @Override
+            public void deliver(Message message) {
+                peer.enqueue(message);
+            }
+
+            @Override
+            public String toString() {
+                return "network route to node '" + peerId + "'";
+            }
+        };
+    }
+
+    byte[] announceBody() {
+        return announcer.body();
+    }
+
+    // ---------------------------------------------------------------- the control thread
+
+    private void tick() {
+        try {
+            long nowNs = nowNs();
+            for (Dialer dialer : dialers) {
+                dialer.maybeDial(nowNs);
+            }
+            for (Peer peer : peers.values()) {
+                Connection active = peer.active();
+                if (active != null) {
+                    if (active.owesAck()) {
+                        active.requestAck();
+                    }
+                    if (nowNs - active.nextProbeNs >= 0) {
+                        active.requestProbe();
+                        active.probesSent++;
+                        active.nextProbeNs = nowNs + (active.probesSent < config.timeProbeBurst() ? BURST_SPACING_NS
+                                : config.timeProbeIntervalNs());
+                    }
+                } else {
+                    List<Outgoing> lost = peer.expireIfDown(nowNs);
+                    if (lost != null) {
+                        log.warn("node {}: node '{}' has been unreachable for over {} ms: unrouting its profiles and"
+                                + " reporting {} waiting messages as undeliverable", nodeId, peer.nodeId,
+                                TimeUnit.NANOSECONDS.toMillis(config.peerDownGraceNs()), lost.size());
+                        routes.forget(peer);
+                        peers.remove(peer.nodeId, peer);
+                        for (Outgoing each : lost) {
+                            lost(each.message(), "node '" + peer.nodeId + "' has been unreachable for over "
+                                    + TimeUnit.NANOSECONDS.toMillis(config.peerDownGraceNs()) + " ms");
+                        }
+                        signalStateChanged();
+                    }
+                }
+            }
+            Profile profile;
+            while ((profile = toReconcile.poll()) != null) {
+                routes.reconcile(profile);
+            }
+        } catch (RuntimeException e) {
+            log.error("node {}: network control tick failed; continuing", nodeId, e);
+        }
+    }
+
+    // ---------------------------------------------------------------- status
+
+    public NetworkStats stats() {
+        int connected = 0;
+        for (Peer peer : peers.values()) {
+            if (peer.isConnected()) {
+                connected++;
+            }
+        }
+        return counters.snapshot(nodeId, connected);
+    }
+
+    public List<PeerStatus> peers() {
+        var all = new ArrayList<PeerStatus>();
+        for (Peer peer : peers.values()) {
+            all.add(status(peer));
+        }
+        all.sort(Comparator.comparing(PeerStatus::nodeId));
+        return all;
+    }
+
+    public Optional<PeerStatus> peerStatus(String peerId) {
+        Peer peer = peers.get(peerId);
+        return peer == null ? Optional.empty() : Optional.of(status(peer));
+    }
+
+    private PeerStatus status(Peer peer) {
+        Connection active = peer.active();
+        int[] backlog = peer.backlog();
+        return new PeerStatus(peer.nodeId, active != null, Optional.ofNullable(active).map(Connection::remote),
+                backlog[0], backlog[1], routes.hostedBy(peer.nodeId), networkTime.peer(peer.nodeId));
+    }
+
+    /** Waits until a connection to {@code peerId} is up; false on timeout. */
+    public boolean awaitConnected(String peerId, Duration timeout) throws InterruptedException {
+        return await(timeout, () -> isConnected(peerId));
+    }
+
+    /** Waits until {@code profile} resolves on this node; false on timeout. */
+    public boolean awaitResolvable(Profile profile, Duration timeout) throws InterruptedException {
+        return await(timeout, () -> {
+            try {
+                kernel.registry().resolve(profile);
+                return true;
+            } catch (ProfileResolutionException e) {
+                return false;
+            }
+        });
+    }
+
+    private boolean await(Duration timeout, java.util.function.BooleanSupplier condition) throws InterruptedException {
+        long deadlineNs = nowNs() + timeout.toNanos();
+        synchronized (stateChanged) {
+            while (!condition.getAsBoolean()) {
+                long leftNs = deadlineNs - nowNs();
+                if (leftNs <= 0) {
+                    return false;
+                }
+                // Bounded wait: a change signalled just before we waited is seen on the next round.
+                stateChanged.wait(Math.max(1, Math.min(TICK_MS, TimeUnit.NANOSECONDS.toMillis(leftNs))));
+            }
+            return true;
+        }
+    }
+
+    void signalStateChanged() {
+        synchronized (stateChanged) {
+            stateChanged.notifyAll();
+        }
+    }
+
+    // ---------------------------------------------------------------- shared parts
+
+    String nodeId() {
+        return nodeId;
+    }
+
+    long incarnation() {
+        return incarnation;
+    }
+
+    long newStreamId() {
+        return nonZero(ThreadLocalRandom.current().nextLong());
+    }
+
+    private static long nonZero(long value) {
+        return value == 0 ? 1 : value;
+    }
+
+    long nowNs() {
+        return System.nanoTime();
+    }
+
+    Kernel kernel() {
+        return kernel;
+    }
+
+    NetworkConfig config() {
+        return config;
+    }
+
+    MessageCodec codec() {
+        return config.codec();
+    }
+
+    public NetworkTime networkTime() {
+        return networkTime;
+    }
+
+    Counters counters() {
+        return counters;
+    }
+
+    RouteTable routes() {
+        return routes;
+    }
+
+    private static void join(Thread thread) {
+        if (thread == null) {
+            return;
+        }
+        try {
+            thread.join(TimeUnit.SECONDS.toMillis(1));
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
+    }
+
+    private static void sleepMs(long ms) {
+        try {
+            Thread.sleep(ms);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
+    }
+}

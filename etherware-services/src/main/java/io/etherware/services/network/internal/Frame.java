@@ -1,0 +1,74 @@
+package io.etherware.services.network.internal;
+
+import io.etherware.core.message.Profile;
+import java.util.List;
+
+/**
+ * The frames of the node-to-node protocol, version 1 ({@code NETWORK-PROTOCOL.md}): each is
+ * a 4-byte big-endian length, a type byte and a body.
+ *
+ * <p>Immutable values.
+ */
+sealed interface Frame {
+
+    int MAGIC = 0x45575254; // "EWRT"
+    int VERSION = 1;
+
+    byte HELLO = 1;
+    byte RESUME = 2;
+    byte DATA = 3;
+    byte ACK = 4;
+    byte HEARTBEAT = 5;
+    byte ANNOUNCE = 6;
+    byte TIME_REQUEST = 7;
+    byte TIME_REPLY = 8;
+    byte REJECT = 9;
+    byte BYE = 10;
+
+    /** Largest HELLO or RESUME: a peer that sends more before the handshake is not a peer. */
+    int MAX_HANDSHAKE_FRAME_BYTES = 1024;
+    /** Type byte plus DATA's seq, ack and hops. */
+    int DATA_OVERHEAD_BYTES = 1 + 8 + 8 + 1;
+
+    /** Identity: first frame each way. */
+    record Hello(int version, String nodeId, long incarnation, long epochNs, int maxFrameBytes) implements Frame {
+    }
+
+    /**
+     * Where the streams stand: second frame each way.
+     *
+     * @param streamId      the stream this node sends on to the peer
+     * @param knownStreamId the peer's stream this node last received from (0: none)
+     * @param receivedCount messages of that stream handed to this node's kernel
+     */
+    record Resume(long streamId, long knownStreamId, long receivedCount) implements Frame {
+    }
+
+    /** One message: its sequence in the stream, the sender's acknowledgement, hops so far, XML. */
+    record Data(long seq, long ack, int hops, byte[] xml) implements Frame {
+    }
+
+    /** Messages of the peer's stream handed to this node's kernel so far. */
+    record Ack(long count) implements Frame {
+    }
+
+    enum Heartbeat implements Frame { INSTANCE }
+
+    /** The full set of profiles the sender hosts, replacing any earlier announce. */
+    record Announce(long version, List<Profile> profiles) implements Frame {
+    }
+
+    record TimeRequest(long t1) implements Frame {
+    }
+
+    record TimeReply(long t1, long t2, long t3) implements Frame {
+    }
+
+    /** The message {@code seq} was refused (did not decode); the connection closes after it. */
+    record Reject(long seq, String reason) implements Frame {
+    }
+
+    /** The sender closes the connection, and why. */
+    record Bye(int code, String text) implements Frame {
+    }
+}

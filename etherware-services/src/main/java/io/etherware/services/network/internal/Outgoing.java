@@ -1,0 +1,19 @@
+package io.etherware.services.network.internal;
+
+import io.etherware.core.message.Message;
+
+/**
+ * A message waiting to go to a peer, with the number of nodes that relayed it on its way here.
+ *
+ * @param message the message
+ * @param hops    0 when it was sent on this node, else the relays it went through
+ * @param xml     its encoding if the sender already made it (a direct write that found the
+ *                writer busy), else null: the writer encodes it
+ */
+record Outgoing(Message message, int hops, byte[] xml) {
+
+    /** Its criticality as an index, least critical first. */
+    int level() {
+        return message.qos().criticality().ordinal();
+    }
+}

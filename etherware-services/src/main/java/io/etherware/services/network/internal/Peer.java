@@ -1,0 +1,523 @@
+package io.etherware.services.network.internal;
+
+import io.etherware.core.message.Criticality;
+import io.etherware.core.message.Message;
+import io.etherware.core.message.MessageFormatException;
+import io.etherware.services.network.CloseReason;
+import java.util.ArrayDeque;
+import java.io.IOException;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.locks.Condition;
+import java.util.concurrent.locks.ReentrantLock;
+
+/**
+ * Everything this node keeps about one other node, across connections: the messages waiting
+ * for it (by criticality), the messages written but not yet acknowledged, where both streams
+ * stand, and which connection is the one in use.
+ *
+ * <p>Streams. Messages to a peer are numbered in a stream with a random id; the peer
+ * acknowledges how many of them its kernel has. A new connection to the same peer resumes the
+ * stream: what the peer already has is released, the rest is written again and duplicates are
+ * dropped by number, so nothing is lost or delivered twice while both nodes live. If the peer
+ * does not know the stream (it restarted), the unacknowledged messages are reported to their
+ * senders as undeliverable and numbering starts over.
+ *
+ * <p>Locking: {@link #lock} guards the outbound state and the connections' writer requests;
+ * {@link #inboundLock} guards the inbound stream and is taken first when both are needed. Nothing
+ * calls the kernel while holding {@link #lock}.
+ */
+final class Peer {
+
+    final String nodeId;
+    final ReentrantLock lock = new ReentrantLock();
+    /** Signalled when a writer may have work: messages, acknowledgements, control requests. */
+    final Condition work = lock.newCondition();
+    final Object inboundLock = new Object();
+
+    private final Engine engine;
+
+    // Guarded by lock.
+    private final OutboundQueue queue;
+    private final ArrayDeque<InFlight> inFlight = new ArrayDeque<>();
+    private long streamId;
+    private long nextSeq;
+    /** Someone (the writer thread, or a sender writing directly) owns the active connection's output. */
+    private volatile boolean writerBusy;
+    /** The writer has work but waits for a direct write to give the output back. */
+    private boolean writerWaitsForToken;
+    /** The queue's size, readable without the lock as a hint. */
+    private volatile int queuedHint;
+    private volatile long ackedCount;
+    private volatile Connection active;
+    private long remoteIncarnation;
+    private long downSinceNs;
+    private boolean expired;
+    /** Expired and removed from the messenger's peers: a later connection gets a new Peer. */
+    private boolean retired;
+    private boolean closed;
+
+    // Guarded by inboundLock; inboundNext is read without it by writers (piggybacked acks).
+    private long inboundStreamId;
+    private volatile long inboundNext;
+
+    Peer(String nodeId, Engine engine) {
+        this.nodeId = nodeId;
+        this.engine = engine;
+        this.queue = new OutboundQueue(engine.config().queueCapacity());
+        this.streamId = engine.newStreamId();
+        this.downSinceNs = engine.nowNs();
+    }
+
+    // ---------------------------------------------------------------- sending
+
+    /**
+     * Takes a message for this peer without ever blocking. When the connection is idle (nothing
+     * queued, nothing being written, little unacknowledged) the calling thread encodes and writes
+     * it itself: the socket's buffer has room for it (everything acknowledged has left it), and a
+     * thread hand-off is saved. Otherwise the message is queued for the writer: a full queue
+     * evicts a less critical message or, when there is none, drops a NONE or LOW message
+     * (counted) or refuses a MIDDLE or HIGH one by throwing, which the kernel turns into an
+     * undeliverable notice to its sender.
+     */
+    void enqueue(Message message) {
+        int hops = ConnectionThread.hopsOfCurrentSend();
+        if (hops > engine.config().maxHops()) {
+            throw new IllegalStateException("message " + message.messageId() + " was already relayed " + (hops - 1)
+                    + " times (maxHops=" + engine.config().maxHops() + "): the nodes' routes disagree");
+        }
+        Connection direct = active;
+        byte[] xml = direct != null && queuedHint == 0 && !writerBusy ? encode(message, direct) : null;
+        var outgoing = new Outgoing(message, hops, xml);
+        OutboundQueue.Outcome outcome = null;
+        InFlight written = null;
+        lock.lock();
+        try {
+            if (closed) {
+                throw new IllegalStateException("the network messenger of node '" + engine.nodeId() + "' is closed");
+            }
+            if (expired) {
+                throw new IllegalStateException("node '" + nodeId + "' is unreachable: disconnected for more than "
+                        + TimeUnit.NANOSECONDS.toMillis(engine.config().peerDownGraceNs()) + " ms");
+            }
+            if (xml != null && active == direct && !writerBusy && queue.isEmpty() && !direct.requests.mustPrecedeMessages()
+                    && inFlight.size() < engine.config().windowMessages()
+                    && direct.fitsDirectWrite(xml.length + Frame.DATA_OVERHEAD_BYTES)) {
+                writerBusy = true;
+                written = new InFlight(nextSeq++, outgoing, xml);
+                inFlight.addLast(written);
+            } else {
+                outcome = queue.offer(outgoing);
+                queuedHint = queue.size();
+                if (!(outcome instanceof OutboundQueue.Outcome.Full)) {
+                    work.signal();
+                }
+            }
+        } finally {
+            lock.unlock();
+        }
+        if (written != null) {
+            writeDirect(direct, written);
+            return;
+        }
+        switch (outcome) {
+            case OutboundQueue.Outcome.Evicted evicted -> engine.dropped(evicted.evicted().message(), nodeId,
+                    "evicted by a more critical message from the full queue to node '" + nodeId + "'");
+            case OutboundQueue.Outcome.Full full -> {
+                if (message.qos().criticality().compareTo(Criticality.LOW) <= 0) {
+                    engine.dropped(message, nodeId, "the queue to node '" + nodeId + "' is full");
+                } else {
+                    throw new IllegalStateException("the queue to node '" + nodeId + "' is full of "
+                            + engine.config().queueCapacity() + " messages at least as critical as this one");
+                }
+            }
+            default -> { }
+        }
+    }
+
+    /** The message's XML for {@code connection}, or an exception the kernel reports to the sender. */
+    private byte[] encode(Message message, Connection connection) {
+        byte[] xml;
+        try {
+            xml = engine.codec().encode(message);
+        } catch (MessageFormatException e) {
+            throw new IllegalStateException("message " + message.messageId() + " does not encode: " + e.getMessage(), e);
+        }
+        if (xml.length + Frame.DATA_OVERHEAD_BYTES > connection.peerMaxFrameBytes()) {
+            throw new IllegalStateException("message " + message.messageId() + " is a frame of "
+                    + (xml.length + Frame.DATA_OVERHEAD_BYTES) + " bytes, over the " + connection.peerMaxFrameBytes()
+                    + " bytes node '" + nodeId + "' accepts");
+        }
+        return xml;
+    }
+
+    private void writeDirect(Connection connection, InFlight entry) {
+        try {
+            connection.writeDirect(entry);
+        } catch (IOException e) {
+            // Kept in flight: the next connection sends it again, or its sender hears it is lost.
+            engine.closeLater(connection, CloseReason.IO_ERROR, "writing to node '" + nodeId + "' failed: " + e);
+        } finally {
+            endTurn();
+        }
+    }
+
+    /** Whoever owned the output gives it back; a writer waiting for it may take its turn. */
+    void endTurn() {
+        lock.lock();
+        try {
+            writerBusy = false;
+            if (writerWaitsForToken) {
+                // Only then: waking an idle writer after every direct write would cost a thread
+                // switch per message.
+                writerWaitsForToken = false;
+                work.signalAll();
+            }
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    private void awaitToken() throws InterruptedException {
+        writerWaitsForToken = true;
+        work.await();
+    }
+
+    // ---------------------------------------------------------------- connections
+
+    /** Where this node's streams with the peer stand, for the RESUME frame. */
+    Frame.Resume resumeState() {
+        synchronized (inboundLock) {
+            lock.lock();
+            try {
+                return new Frame.Resume(streamId, inboundStreamId, inboundNext);
+            } finally {
+                lock.unlock();
+            }
+        }
+    }
+
+    /** The outcome of {@link #activate}. */
+    record Activation(boolean accepted, Connection loser, List<InFlight> lost, boolean restarted) {
+    }
+
+    /**
+     * Makes {@code candidate}, handshaken, this peer's connection, unless a connection that wins
+     * the one-connection rule is already in use. Resumes or restarts both streams.
+     *
+     * @throws ProtocolException if the peer claims to have received messages never sent
+     */
+    Activation activate(Connection candidate, Frame.Hello hello, Frame.Resume theirs) throws ProtocolException {
+        synchronized (inboundLock) {
+            lock.lock();
+            try {
+                if (closed || retired) {
+                    return new Activation(false, candidate, List.of(), false);
+                }
+                Connection current = active;
+                Connection loser = null;
+                if (current != null && current != candidate) {
+                    if (!candidate.isPreferredOver(current)) {
+                        return new Activation(false, candidate, List.of(), false);
+                    }
+                    loser = current;
+                }
+                boolean restarted = remoteIncarnation != 0 && remoteIncarnation != hello.incarnation();
+                remoteIncarnation = hello.incarnation();
+                List<InFlight> lost = List.of();
+                if (theirs.knownStreamId() == streamId) {
+                    if (theirs.receivedCount() > nextSeq) {
+                        throw new ProtocolException(CloseReason.SEQUENCE_ERROR, "the peer claims " + theirs.receivedCount()
+                                + " messages of stream " + Long.toHexString(streamId) + ", only " + nextSeq + " were sent");
+                    }
+                    releaseInFlightBelow(theirs.receivedCount());
+                    ackedCount = theirs.receivedCount();
+                    candidate.requests.resend(List.copyOf(inFlight));
+                } else {
+                    // The peer does not know our stream: what it did not acknowledge is of unknown fate.
+                    lost = List.copyOf(inFlight);
+                    inFlight.clear();
+                    nextSeq = 0;
+                    ackedCount = 0;
+                    candidate.requests.resend(List.of());
+                }
+                if (theirs.streamId() != inboundStreamId) {
+                    inboundStreamId = theirs.streamId();
+                    inboundNext = 0;
+                }
+                if (loser != null) {
+                    loser.requests.requestBye(CloseReason.DUPLICATE, "replaced by the connection dialed by '"
+                            + candidate.initiatorId() + "'");
+                }
+                active = candidate;
+                expired = false;
+                candidate.requests.announce(engine.announceBody());
+                work.signalAll();
+                return new Activation(true, loser, lost, restarted);
+            } finally {
+                lock.unlock();
+            }
+        }
+    }
+
+    /**
+     * The connection ends: if it was this peer's, the peer is down from now on (its messages wait
+     * for a new connection, for at most the grace period).
+     */
+    boolean deactivate(Connection connection) {
+        lock.lock();
+        try {
+            if (active != connection) {
+                return false;
+            }
+            active = null;
+            downSinceNs = engine.nowNs();
+            work.signalAll();
+            return true;
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    Connection active() {
+        return active;
+    }
+
+    boolean isConnected() {
+        return active != null;
+    }
+
+    // ---------------------------------------------------------------- the writer's side
+
+    /**
+     * What a writer does in one turn; null when it should stop. Blocks until there is work or a
+     * heartbeat is due.
+     */
+    WriterTurn nextTurn(Connection connection, int batch) throws InterruptedException {
+        int window = engine.config().windowMessages();
+        lock.lock();
+        try {
+            while (true) {
+                if (active != connection) {
+                    if (writerBusy) {
+                        awaitToken();
+                        continue;
+                    }
+                    WriterTurn last = connection.requests.takeBye();
+                    writerBusy = last != null;
+                    return last;
+                }
+                boolean sendable = !queue.isEmpty() && inFlight.size() < window;
+                if (!connection.requests.hasRequests() && !sendable) {
+                    long waitNs = connection.heartbeatDueNs() - engine.nowNs();
+                    if (waitNs > 0) {
+                        work.awaitNanos(waitNs);
+                        continue;
+                    }
+                    connection.requests.requestHeartbeat();
+                }
+                if (writerBusy) {
+                    awaitToken(); // a sender is writing directly; it signals when done
+                    continue;
+                }
+                break;
+            }
+            WriterTurn turn = connection.requests.takeRequests(batch);
+            // New messages only once every message to send again is out: the peer expects the
+            // stream in order.
+            int room = connection.requests.mustPrecedeMessages() ? 0 : Math.min(batch, window - inFlight.size());
+            while (turn.fresh.size() < room) {
+                Outgoing next = queue.poll();
+                if (next == null) {
+                    break;
+                }
+                turn.fresh.add(next);
+            }
+            queuedHint = queue.size();
+            writerBusy = true;
+            return turn;
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    /**
+     * Numbers the encoded messages of a turn and keeps them until acknowledged; null if the
+     * connection is no longer the peer's, in which case they go back to the front of the queue.
+     */
+    List<InFlight> assign(Connection connection, List<Outgoing> encoded, List<byte[]> xml) {
+        lock.lock();
+        try {
+            if (active != connection) {
+                queue.pushBack(encoded);
+                queuedHint = queue.size();
+                work.signalAll();
+                return null;
+            }
+            var assigned = new ArrayList<InFlight>(encoded.size());
+            for (int i = 0; i < encoded.size(); i++) {
+                var entry = new InFlight(nextSeq++, encoded.get(i), xml.get(i));
+                inFlight.addLast(entry);
+                assigned.add(entry);
+            }
+            return assigned;
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    private void releaseInFlightBelow(long count) {
+        while (!inFlight.isEmpty() && inFlight.peekFirst().seq() < count) {
+            inFlight.pollFirst();
+        }
+    }
+
+    /** The peer's kernel has the first {@code count} messages of the stream. */
+    void onAck(Connection connection, long count) throws ProtocolException {
+        if (count <= ackedCount) {
+            return;
+        }
+        lock.lock();
+        try {
+            if (active != connection) {
+                return;
+            }
+            if (count > nextSeq) {
+                throw new ProtocolException(CloseReason.SEQUENCE_ERROR, "acknowledgement of " + count
+                        + " messages, only " + nextSeq + " were sent");
+            }
+            int window = engine.config().windowMessages();
+            boolean windowWasFull = inFlight.size() >= window;
+            releaseInFlightBelow(count);
+            ackedCount = count;
+            if (inFlight.isEmpty()) {
+                connection.allDataAcknowledged();
+            }
+            if (windowWasFull && inFlight.size() < window && !queue.isEmpty()) {
+                work.signal(); // the writer waited for room in the window
+            }
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    /** The peer refused message {@code seq}; returns it (to report), or null if it is not kept. */
+    Outgoing onReject(Connection connection, long seq) {
+        lock.lock();
+        try {
+            if (active != connection) {
+                return null;
+            }
+            var each = inFlight.iterator();
+            while (each.hasNext()) {
+                InFlight entry = each.next();
+                if (entry.seq() == seq) {
+                    each.remove();
+                    return entry.outgoing();
+                }
+            }
+            return null;
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    /** Messages handed to this node's kernel from the peer's stream: the acknowledgement to send. */
+    long inboundCount() {
+        return inboundNext;
+    }
+
+    /**
+     * Checks a message frame's place in the inbound stream; on success runs {@code delivery}
+     * and counts it, all under the inbound lock so that two connections (during a replacement)
+     * never deliver out of order or twice.
+     *
+     * @return false for a duplicate (dropped) or a frame of a replaced connection
+     */
+    boolean deliverInOrder(Connection connection, long seq, InboundDelivery delivery) throws ProtocolException {
+        synchronized (inboundLock) {
+            if (active != connection) {
+                return false;
+            }
+            if (seq < inboundNext) {
+                return false;
+            }
+            if (seq > inboundNext) {
+                throw new ProtocolException(CloseReason.SEQUENCE_ERROR, "message frame " + seq + " where "
+                        + inboundNext + " was expected");
+            }
+            try {
+                delivery.deliver();
+            } finally {
+                inboundNext = seq + 1; // delivered, or refused for good: never asked for again
+            }
+            return true;
+        }
+    }
+
+    /** The hand-over of one inbound message to the kernel. */
+    @FunctionalInterface
+    interface InboundDelivery {
+        void deliver() throws ProtocolException;
+    }
+
+    // ---------------------------------------------------------------- housekeeping
+
+    /**
+     * If the peer has been down longer than the grace period: stop accepting messages for it and
+     * retire it (the messenger forgets it; a later connection starts afresh), and return what
+     * waited, to report to the senders. Null if it is not newly expired.
+     */
+    List<Outgoing> expireIfDown(long nowNs) {
+        lock.lock();
+        try {
+            if (active != null || expired || closed || nowNs - downSinceNs < engine.config().peerDownGraceNs()) {
+                return null;
+            }
+            expired = true;
+            retired = true;
+            return abandonAll();
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    /** The messenger closes: refuse new messages and return what waited. */
+    List<Outgoing> close() {
+        lock.lock();
+        try {
+            closed = true;
+            work.signalAll();
+            return abandonAll();
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    private List<Outgoing> abandonAll() {
+        var lost = new ArrayList<Outgoing>(inFlight.size() + queue.size());
+        for (InFlight entry : inFlight) {
+            lost.add(entry.outgoing());
+        }
+        lost.addAll(queue.drain());
+        queuedHint = 0;
+        inFlight.clear();
+        // A fresh stream: the peer, when it comes back, must not expect the abandoned numbers.
+        streamId = engine.newStreamId();
+        nextSeq = 0;
+        ackedCount = 0;
+        return lost;
+    }
+
+
+    /** Waiting messages, and written ones not yet acknowledged. */
+    int[] backlog() {
+        lock.lock();
+        try {
+            return new int[] {queue.size(), inFlight.size()};
+        } finally {
+            lock.unlock();
+        }
+    }
+}

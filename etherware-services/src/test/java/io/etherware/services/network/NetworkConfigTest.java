@@ -1,0 +1,63 @@
+package io.etherware.services.network;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertThrows;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.etherware.core.kernel.EtherwareNode;
+import java.io.UncheckedIOException;
+import java.net.InetSocketAddress;
+import java.time.Duration;
+import org.junit.jupiter.api.Test;
+
+/** Misconfiguration fails at build time naming the field; a taken port fails at start naming it. */
+class NetworkConfigTest {
+
+    private static String errorOf(NetworkConfig.Builder builder) {
+        return assertThrows(IllegalArgumentException.class, builder::build).getMessage();
+    }
+
+    @Test
+    void shouldNameTheFieldAndValueOfABadSetting() {
+        assertTrue(errorOf(NetworkConfig.builder().maxFrameBytes(100)).startsWith("maxFrameBytes=100"));
+        assertTrue(errorOf(NetworkConfig.builder().queueCapacity(0)).startsWith("queueCapacity=0"));
+        assertTrue(errorOf(NetworkConfig.builder().windowMessages(1)).startsWith("windowMessages=1"));
+        String heartbeat = errorOf(NetworkConfig.builder().heartbeatInterval(Duration.ofSeconds(2))
+                .heartbeatTimeout(Duration.ofSeconds(3)));
+        assertTrue(heartbeat.startsWith("heartbeatTimeoutNs=3000000000") && heartbeat.contains("twice"), heartbeat);
+        assertTrue(errorOf(NetworkConfig.builder().reconnectBackoff(Duration.ofSeconds(1), Duration.ofMillis(10), 0.2))
+                .startsWith("reconnectMaxBackoffNs=10000000"));
+        assertTrue(errorOf(NetworkConfig.builder().reconnectBackoff(Duration.ofMillis(10), Duration.ofSeconds(1), 1.0))
+                .startsWith("reconnectJitter=1.0"));
+        assertTrue(errorOf(NetworkConfig.builder().timeProbes(Duration.ofSeconds(1), 100)).startsWith("timeProbeBurst=100"));
+        assertTrue(errorOf(NetworkConfig.builder().maxHops(-1)).startsWith("maxHops=-1"));
+    }
+
+    @Test
+    void shouldFitTheDefaultCodecToTheFrameLimit() {
+        NetworkConfig config = NetworkConfig.builder().maxFrameBytes(64 * 1024).build();
+        assertTrue(config.codec().maxDocumentBytes() < config.maxFrameBytes());
+        assertEquals(NetworkConfig.DEFAULT_MAX_FRAME_BYTES, NetworkConfig.builder().build().maxFrameBytes());
+    }
+
+    @Test
+    void shouldSayWhichAddressCannotBeBoundAndCloseWithItsNode() throws Exception {
+        try (var node = EtherwareNode.builder().nodeId("a").build().start();
+             var first = NetworkMessenger.start(node, NetworkConfig.builder().build())) {
+            InetSocketAddress taken = first.localAddress();
+            try (var other = EtherwareNode.builder().nodeId("b").build().start()) {
+                var error = assertThrows(UncheckedIOException.class,
+                        () -> NetworkMessenger.start(other, NetworkConfig.builder().listen(taken).build()));
+                assertTrue(error.getMessage().contains(String.valueOf(taken.getPort())), error.getMessage());
+            }
+            try (var b = EtherwareNode.builder().nodeId("b").build().start()) {
+                var messenger = NetworkMessenger.start(b, NetworkConfig.builder().peer(taken).build());
+                assertTrue(first.awaitConnected("b", Duration.ofSeconds(30)));
+                b.close();
+                Await.until("closing node b closed its messenger", () -> !first.peer("b").orElseThrow().connected());
+                assertEquals(1, first.stats().closes(CloseReason.PEER_CLOSED));
+                messenger.close(); // idempotent
+            }
+        }
+    }
+}

@@ -1,0 +1,153 @@
+package io.etherware.services.network;
+
+import java.io.ByteArrayOutputStream;
+import java.io.DataInputStream;
+import java.io.DataOutputStream;
+import java.io.EOFException;
+import java.io.IOException;
+import java.net.InetSocketAddress;
+import java.net.Socket;
+import java.net.SocketException;
+import java.nio.charset.StandardCharsets;
+import java.util.ArrayList;
+import java.util.List;
+
+/**
+ * A peer written straight from {@code NETWORK-PROTOCOL.md} with a raw socket: the attacker of the
+ * bad-input tests, and a check that the document is enough to talk to a node.
+ */
+final class RawPeer implements AutoCloseable {
+
+    static final int MAGIC = 0x45575254;
+    static final byte HELLO = 1;
+    static final byte RESUME = 2;
+    static final byte DATA = 3;
+    static final byte ANNOUNCE = 6;
+    static final byte REJECT = 9;
+    static final byte BYE = 10;
+
+    /** A frame read back: its type and body. */
+    record Received(int type, byte[] body) {
+        int byeCode() {
+            return body[0] & 0xFF;
+        }
+
+        String byeText() {
+            return new String(body, 3, body.length - 3, StandardCharsets.UTF_8);
+        }
+    }
+
+    private final Socket socket;
+    private final DataOutputStream out;
+    private final DataInputStream in;
+
+    RawPeer(InetSocketAddress node) throws IOException {
+        socket = new Socket();
+        socket.connect(node, 10_000);
+        socket.setSoTimeout(30_000);
+        out = new DataOutputStream(socket.getOutputStream());
+        in = new DataInputStream(socket.getInputStream());
+    }
+
+    void raw(byte[] bytes) throws IOException {
+        out.write(bytes);
+        out.flush();
+    }
+
+    void frame(int type, byte[] body) throws IOException {
+        out.writeInt(1 + body.length);
+        out.writeByte(type);
+        out.write(body);
+        out.flush();
+    }
+
+    static byte[] body(IoWriter writer) throws IOException {
+        var bytes = new ByteArrayOutputStream();
+        var data = new DataOutputStream(bytes);
+        writer.write(data);
+        data.flush();
+        return bytes.toByteArray();
+    }
+
+    @FunctionalInterface
+    interface IoWriter {
+        void write(DataOutputStream out) throws IOException;
+    }
+
+    static void string(DataOutputStream out, String text) throws IOException {
+        byte[] utf8 = text.getBytes(StandardCharsets.UTF_8);
+        out.writeShort(utf8.length);
+        out.write(utf8);
+    }
+
+    void hello(int magic, int version, String nodeId) throws IOException {
+        frame(HELLO, body(out -> {
+            out.writeInt(magic);
+            out.writeShort(version);
+            string(out, nodeId);
+            out.writeLong(0x1234_5678_9abcL); // incarnation
+            out.writeLong(System.currentTimeMillis() * 1_000_000L);
+            out.writeInt(1 << 20);
+        }));
+    }
+
+    /** A complete handshake as {@code nodeId} on stream 1, knowing nothing of the node. */
+    void handshake(String nodeId) throws IOException {
+        hello(MAGIC, 1, nodeId);
+        expect(HELLO);
+        frame(RESUME, body(out -> {
+            out.writeLong(1);
+            out.writeLong(0);
+            out.writeLong(0);
+        }));
+        expect(RESUME);
+    }
+
+    void data(long seq, String xml) throws IOException {
+        frame(DATA, body(out -> {
+            out.writeLong(seq);
+            out.writeLong(0);
+            out.writeByte(0);
+            out.write(xml.getBytes(StandardCharsets.UTF_8));
+        }));
+    }
+
+    Received read() throws IOException {
+        int length = in.readInt();
+        int type = in.readUnsignedByte();
+        byte[] body = new byte[length - 1];
+        in.readFully(body);
+        return new Received(type, body);
+    }
+
+    Received expect(int type) throws IOException {
+        Received frame = read();
+        if (frame.type() != type) {
+            throw new AssertionError("expected frame type " + type + ", got " + frame.type());
+        }
+        return frame;
+    }
+
+    /** Reads until the node closes the connection; returns every frame it sent meanwhile. */
+    List<Received> readUntilClosed() throws IOException {
+        var frames = new ArrayList<Received>();
+        while (true) {
+            try {
+                frames.add(read());
+            } catch (EOFException e) {
+                return frames;
+            } catch (SocketException e) {
+                return frames; // reset: closed as well
+            }
+        }
+    }
+
+    void shutdownOutput() throws IOException {
+        socket.shutdownOutput();
+    }
+
+    @Override
+    public void close() throws IOException {
+        socket.close();
+    }
+}
