@@ -140,6 +140,16 @@ final class RecordingKernel implements Kernel {
             public boolean unregisterRemote(Profile profile) {
                 return endpoints.remove(profile) != null;
             }
+
+            @Override
+            public void addListener(Listener listener) {
+                throw new UnsupportedOperationException("the Notifier does not listen to the registry");
+            }
+
+            @Override
+            public boolean removeListener(Listener listener) {
+                return false;
+            }
         };
     }
 
