@@ -24,6 +24,7 @@ import picocli.CommandLine.Spec;
  * <p>Run by picocli on the main thread.
  */
 @Command(name = "stress", mixinStandardHelpOptions = true, sortOptions = false,
+        header = "Periodic control under computational stress, original Etherware vs Etherware-RT (Section VI-B).",
         description = {
             "Balance the pendulum under computational stress (paper Section VI-B, Fig. 7 and 9), twice: on the"
                     + " original Etherware (one FIFO dispatcher) and on Etherware-RT (Table II dispatchers at"

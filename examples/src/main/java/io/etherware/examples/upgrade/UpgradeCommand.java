@@ -28,6 +28,7 @@ import picocli.CommandLine.Spec;
  * <p>Run by picocli on the main thread.
  */
 @Command(name = "upgrade", mixinStandardHelpOptions = true, sortOptions = false,
+        header = "Replace the controller V1 by V2 from a plugin jar while it balances (Section VI-C1).",
         description = {
             "Replace the pendulum's controller while it balances (paper Section VI-C1, Fig. 10 and 11): V1 (soft"
                     + " gains) runs on Etherware-RT; at --upgrade-at a HIGH management request makes the node load"
