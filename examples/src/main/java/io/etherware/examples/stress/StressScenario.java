@@ -144,7 +144,7 @@ public final class StressScenario {
             Notifier notifier = Notifier.install(rig.node(), NotifierConfig.defaults());
             PlantProbe probe = new PlantProbe(rig.board(), clock, periodNs, capacity, RunSummary.FALL_THRESHOLD_RAD,
                     events);
-            CpuLoad load = CpuLoad.start(0);
+            CpuLoad load = CpuLoad.start(0); // no load threads until the world's threads run (below)
             long originNs;
             long firstReleaseNs;
             long endNs;
