@@ -1,0 +1,98 @@
+package io.etherware.examples.scenario;
+
+import io.etherware.core.kernel.EtherwareNode;
+import io.etherware.core.scheduler.Scheduler;
+import io.etherware.core.time.NodeClock;
+import io.etherware.pendulum.components.ControlListener;
+import io.etherware.pendulum.components.ControllerConfig;
+import io.etherware.pendulum.components.DspProxy;
+import io.etherware.pendulum.components.PendulumController;
+import io.etherware.pendulum.control.GainSet;
+import io.etherware.pendulum.dsp.DspBoard;
+import io.etherware.pendulum.dsp.DspBoardConfig;
+import io.etherware.pendulum.plant.PendulumParameters;
+import io.etherware.pendulum.plant.PendulumState;
+import io.etherware.pendulum.serial.DspClient;
+import io.etherware.pendulum.serial.SimulatedSerialLink;
+import java.util.Objects;
+import java.util.function.Supplier;
+
+/**
+ * The pendulum of paper Section VI as the scenarios wire it (Fig. 7 and 10): a {@link DspBoard}
+ * stepping the plant in real time behind a 115200-baud {@link SimulatedSerialLink}, and one
+ * {@link EtherwareNode} hosting the {@link DspProxy} on the host end of the link and the
+ * {@link PendulumController}. The node's scheduler is the scenario's choice; the board always
+ * runs at {@link SimThreads#BOARD_PRIORITY} so the physical world keeps its time whatever the
+ * node does.
+ *
+ * <p>Lifecycle: construct, add further components to {@link #node()}, {@link #start}, then
+ * {@link #close}. Not thread-safe apart from what {@link EtherwareNode} and {@link DspBoard}
+ * guarantee themselves.
+ */
+public final class PendulumRig implements AutoCloseable {
+
+    /** The plant of the paper (Section VI-A). */
+    public static final PendulumParameters PARAMETERS = PendulumParameters.defaults();
+
+    private final SimulatedSerialLink link = SimulatedSerialLink.realTime(SimulatedSerialLink.Config.defaults());
+    private final DspBoard board;
+    private final EtherwareNode node;
+    private final NodeClock clock = NodeClock.system();
+
+    /**
+     * A rig whose node, {@code nodeId}, runs on {@code scheduler}; the plant starts at
+     * {@code initial} and the controller computes with {@code gains}, telling {@code listener}
+     * about each cycle.
+     */
+    public PendulumRig(String nodeId, Supplier<? extends Scheduler> scheduler, PendulumState initial, GainSet gains,
+            ControlListener listener) {
+        Objects.requireNonNull(scheduler, "scheduler");
+        board = new DspBoard(DspBoardConfig.defaults(), PARAMETERS, initial, link.boardEnd());
+        DspClient client = new DspClient(link.hostEnd(), clock, DspClient.Config.defaults());
+        node = EtherwareNode.builder().nodeId(nodeId).scheduler(scheduler).clock(clock).build();
+        node.add(DspProxy.DEFAULT_PROFILE, DspProxy.factory(client));
+        node.add(PendulumController.DEFAULT_PROFILE,
+                PendulumController.factory(ControllerConfig.defaults(), gains, listener));
+    }
+
+    /** The node; add the scenario's other components before {@link #start}. */
+    public EtherwareNode node() {
+        return node;
+    }
+
+    /** The simulated DSP board (and through it the plant's ground truth). */
+    public DspBoard board() {
+        return board;
+    }
+
+    /** The node's clock. */
+    public NodeClock clock() {
+        return clock;
+    }
+
+    /**
+     * Starts the node, then the board on a SCHED_FIFO {@link SimThreads#BOARD_PRIORITY} thread.
+     * The pendulum starts falling when the board starts (θ2 doubles in about 90 ms): start the
+     * Ticks at once afterwards.
+     *
+     * @return the board's start time, the run's time origin
+     */
+    public long start(SimThreads threads) {
+        node.start();
+        long originNs = clock.nanoTime();
+        board.startRealTime(clock, threads.fifo("dsp-board", SimThreads.BOARD_PRIORITY));
+        return originNs;
+    }
+
+    /** Closes the node, then stops the board and closes the link. */
+    @Override
+    public void close() {
+        try {
+            node.close();
+        } finally {
+            board.close();
+            link.hostEnd().close();
+            link.boardEnd().close();
+        }
+    }
+}

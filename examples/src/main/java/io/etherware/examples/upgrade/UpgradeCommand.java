@@ -1,0 +1,123 @@
+package io.etherware.examples.upgrade;
+
+import io.etherware.examples.EtherwareDemo;
+import io.etherware.examples.output.ComparisonTable;
+import io.etherware.examples.scenario.Progress;
+import io.etherware.examples.scenario.RunSummary;
+import io.etherware.examples.scenario.ScenarioOptions;
+import io.etherware.examples.scenario.ScenarioRun;
+import java.io.IOException;
+import java.io.PrintWriter;
+import java.net.URISyntaxException;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.List;
+import java.util.concurrent.Callable;
+import java.util.stream.Stream;
+import picocli.CommandLine.Command;
+import picocli.CommandLine.Mixin;
+import picocli.CommandLine.Model.CommandSpec;
+import picocli.CommandLine.Option;
+import picocli.CommandLine.ParameterException;
+import picocli.CommandLine.Spec;
+
+/**
+ * {@code etherware-demo upgrade}: the runtime controller upgrade of paper Section VI-C1, then the
+ * table, the CSV and the plot.
+ *
+ * <p>Run by picocli on the main thread.
+ */
+@Command(name = "upgrade", mixinStandardHelpOptions = true, sortOptions = false,
+        header = "Replace the controller V1 by V2 from a plugin jar while it balances (Section VI-C1).",
+        description = {
+            "Replace the pendulum's controller while it balances (paper Section VI-C1, Fig. 10 and 11): V1 (soft"
+                    + " gains) runs on Etherware-RT; at --upgrade-at a HIGH management request makes the node load"
+                    + " V2 (tight gains) from a plugin jar and swap it in at a message boundary, with V1's state."
+                    + " Prints V1 against V2, the upgrade's timings and the control hand-over; writes a CSV and"
+                    + " PNG/SVG plots.",
+            "Default: 60 s, upgrade at 30 s."},
+        footer = {"", "Example: etherware-demo upgrade --duration 20 --upgrade-at 8"})
+public final class UpgradeCommand implements Callable<Integer> {
+
+    @Spec
+    private CommandSpec spec;
+
+    @Mixin
+    private ScenarioOptions common;
+
+    @Option(names = "--upgrade-at", paramLabel = "SECONDS",
+            description = "When the management request asks for V2, in seconds after the start (default: 30, or"
+                    + " half the duration if shorter).")
+    private Double upgradeAtS;
+
+    @Option(names = "--jar", paramLabel = "PATH",
+            description = "The plugin jar with controller V2 (default: the build's, target/plugins/*"
+                    + UpgradeConfig.JAR_SUFFIX + ").")
+    private Path jar;
+
+    @Override
+    public Integer call() throws Exception {
+        UpgradeConfig config = config();
+        PrintWriter out = spec.commandLine().getOut();
+        out.println(UpgradeReport.heading(config));
+        out.flush();
+
+        UpgradeOutcome outcome = new UpgradeScenario(config,
+                Progress.onStandardError("upgrade", config.durationNs() / 1e9)).run();
+        List<Path> written = UpgradeReport.write(config, outcome);
+
+        List<ScenarioRun> phases = List.of(outcome.beforeUpgrade(), outcome.afterUpgrade());
+        out.println();
+        out.print(ComparisonTable.format(phases, phases.stream().map(RunSummary::of).toList()));
+        out.println();
+        UpgradeReport.upgradeLines(outcome).forEach(out::println);
+        out.println();
+        outcome.run().notes().forEach(out::println);
+        out.println();
+        out.println("Wrote:");
+        written.forEach(path -> out.println("  " + path.toAbsolutePath().normalize()));
+        out.flush();
+        return outcome.upgraded() ? 0 : 1;
+    }
+
+    private UpgradeConfig config() throws IOException {
+        long durationNs = common.durationNs(UpgradeConfig.DEFAULT_DURATION_NS / 1e9);
+        Path plugin = jar != null ? jar : defaultJar();
+        if (!Files.isRegularFile(plugin)) {
+            throw new ParameterException(spec.commandLine(), "--jar=" + plugin + " is not a file: give the plugin jar"
+                    + " with controller V2, or build it with ./mvnw -pl examples -am -DskipTests package");
+        }
+        UpgradeConfig config = UpgradeConfig.of(durationNs, common.periodNs(), plugin, common.out("upgrade"));
+        if (upgradeAtS != null) {
+            long atNs = Math.round(upgradeAtS * 1e9);
+            if (!(atNs >= 1_000_000_000L && atNs <= durationNs - 1_000_000_000L)) {
+                throw new ParameterException(spec.commandLine(), "--upgrade-at=" + upgradeAtS + " is out of range:"
+                        + " leave at least 1 s before it and 1 s after it within --duration (" + durationNs / 1e9
+                        + " s)");
+            }
+            config = config.withUpgradeAtNs(atNs);
+        }
+        return config;
+    }
+
+    /**
+     * The plugin jar the build put next to these classes: {@code target/plugins} beside
+     * {@code target/classes} (exec, tests) or beside the examples jar (java -jar).
+     */
+    static Path defaultJar() throws IOException {
+        Path plugins;
+        try {
+            Path location = Path.of(EtherwareDemo.class.getProtectionDomain().getCodeSource().getLocation().toURI());
+            plugins = location.getParent().resolve("plugins");
+        } catch (URISyntaxException | RuntimeException e) {
+            plugins = Path.of("target", "plugins");
+        }
+        if (Files.isDirectory(plugins)) {
+            try (Stream<Path> files = Files.list(plugins)) {
+                return files.filter(f -> f.getFileName().toString().endsWith(UpgradeConfig.JAR_SUFFIX)).sorted()
+                        .findFirst().orElse(plugins.resolve("examples" + UpgradeConfig.JAR_SUFFIX));
+            }
+        }
+        return plugins.resolve("examples" + UpgradeConfig.JAR_SUFFIX);
+    }
+}
