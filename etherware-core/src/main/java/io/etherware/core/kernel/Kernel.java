@@ -2,6 +2,7 @@ package io.etherware.core.kernel;
 
 import io.etherware.core.component.Component;
 import io.etherware.core.component.ComponentState;
+import io.etherware.core.component.Shell;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageId;
 import io.etherware.core.message.Profile;
@@ -120,6 +121,34 @@ public interface Kernel {
      * @param profile the exact profile of a local component
      */
     CompletableFuture<Void> relocateAsync(Profile profile, RemoteRoute route);
+
+    /**
+     * Adds a component that arrives by migration, <em>held</em>: registered at once (so messages
+     * for its profile come here and are kept in order) and started now, but it handles nothing
+     * until {@link #release}. The instance the factory returns first should already hold the
+     * migrated state ({@link Component#restore}); the factory is also used for later restarts.
+     * {@code onFirstHandling} receives the time ({@link NodeClock#nanoTime()}) at which its first
+     * message began, on that message's dispatcher after the handling; it must be quick.
+     *
+     * <p>The default implementation, for kernels that cannot host migrated components, throws
+     * {@link UnsupportedOperationException}.
+     *
+     * @return the component's shell; if its {@code onStart} threw it is FAILED (remove it)
+     * @throws IllegalArgumentException if a local component has the profile already
+     * @throws IllegalStateException    if the node does not run
+     */
+    default Shell addHeld(Profile profile, Supplier<? extends Component> factory, LongConsumer onFirstHandling) {
+        throw new UnsupportedOperationException(getClass().getName() + " cannot host migrated components");
+    }
+
+    /**
+     * Removes a local component: unregistered at once, stopped at its next message boundary; the
+     * messages that waited for it (also those kept by a hold) are resolved anew. The default
+     * implementation throws {@link UnsupportedOperationException}.
+     */
+    default CompletableFuture<Void> removeAsync(Profile profile) {
+        throw new UnsupportedOperationException(getClass().getName() + " cannot remove components");
+    }
 
     /** The node's counters now. */
     NodeStats stats();

@@ -269,6 +269,34 @@ class ManagementHooksTest {
     }
 
     @Test
+    void shouldKeepMessagesForAComponentAddedHeldUntilReleasedAndReportItsFirstHandling() throws Exception {
+        var log = new CopyOnWriteArrayList<String>();
+        var firstNs = new CompletableFuture<Long>();
+        try (var node = EtherwareNode.builder().nodeId("add-held").build()) {
+            node.add(MARKER, () -> (message, context) -> context.reply(message, message.contents()));
+            node.start();
+            var arrived = new CounterV1(log);
+            arrived.restore(new Counted(41));
+            long beforeNs = node.clock().nanoTime();
+            Shell shell = node.addHeld(TARGET, () -> arrived, firstNs::complete);
+            assertEquals(Shell.State.RUNNING, shell.state(), "started, but held");
+            for (int i = 0; i < 5; i++) {
+                node.send(TARGET, new Num(i));
+            }
+            node.requestBlocking(MARKER, new Text("m")); // the FIFO queue has passed the 5 messages
+            assertEquals(List.of(), log, "nothing is handled before the release");
+            assertFalse(firstNs.isDone());
+
+            node.release(TARGET);
+            Await.until("the kept messages", () -> log.size() == 5);
+            assertEquals(List.of("v1:42", "v1:43", "v1:44", "v1:45", "v1:46"), log, "in order, from the restored state");
+            assertTrue(firstNs.get(30, TimeUnit.SECONDS) >= beforeNs, "the first handling is reported");
+            assertThrows(IllegalArgumentException.class, () -> node.addHeld(TARGET, () -> arrived, ns -> { }),
+                    "a profile names one component");
+        }
+    }
+
+    @Test
     void shouldSettleAKeptRequestOutcomeLocallyWhenRelocated() throws Exception {
         var forwarded = new CopyOnWriteArrayList<Message>();
         var replyNow = new CountDownLatch(1);

@@ -402,6 +402,27 @@ public final class KernelCore implements Kernel, JobRunner {
 
     /** Adds a component; starts it at once if the node runs. */
     public Shell add(Profile profile, Supplier<? extends Component> factory, SupervisionPolicy policy) {
+        return add(profile, factory, policy, null);
+    }
+
+    @Override
+    public Shell addHeld(Profile profile, Supplier<? extends Component> factory, LongConsumer onFirstHandling) {
+        Objects.requireNonNull(onFirstHandling, "onFirstHandling");
+        if (state != NodeState.RUNNING) {
+            throw new IllegalStateException("node '" + nodeId + "' is " + state + "; a migrated component arrives"
+                    + " only at a running node");
+        }
+        return add(profile, factory, config.supervision(), onFirstHandling);
+    }
+
+    @Override
+    public CompletableFuture<Void> removeAsync(Profile profile) {
+        return remove(profile);
+    }
+
+    /** Adds a component, held from the start (before it is registered) if {@code heldProbe} is set. */
+    private Shell add(Profile profile, Supplier<? extends Component> factory, SupervisionPolicy policy,
+                      LongConsumer heldProbe) {
         LocalShell shell;
         boolean startNow;
         synchronized (lifecycleLock) {
@@ -409,6 +430,10 @@ public final class KernelCore implements Kernel, JobRunner {
                 throw new IllegalStateException("node '" + nodeId + "' is closed; cannot add '" + profile + "'");
             }
             shell = new LocalShell(this, profile, factory, policy);
+            if (heldProbe != null) {
+                // Before registration: no message can reach it unheld.
+                shell.holdBeforeStart(heldProbe);
+            }
             registry.register(profile, shell.endpoint());
             shells.add(shell);
             everAdded.add(shell);

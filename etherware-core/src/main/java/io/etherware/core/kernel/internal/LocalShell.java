@@ -185,6 +185,15 @@ public final class LocalShell implements Shell {
         gate.hold();
     }
 
+    /**
+     * Before start, by the thread that adds the component (it owns the gate until start): keep
+     * arrivals from the start on, and report the first handling to {@code probe}.
+     */
+    void holdBeforeStart(LongConsumer probe) {
+        gate.hold();
+        firstHandlingProbe = probe;
+    }
+
     /** Ends a hold; the kept jobs are delivered in urgency order, exactly once. */
     void release() {
         gate.release();
