@@ -294,8 +294,14 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
     }
 
     @Override
-    public Shell addHeld(Profile profile, Supplier<? extends Component> factory, LongConsumer onFirstHandling) {
-        return core.addHeld(profile, factory, onFirstHandling);
+    public Shell addHeld(Profile profile, Profile arrival, Supplier<? extends Component> factory,
+                         LongConsumer onFirstHandling) {
+        return core.addHeld(profile, arrival, factory, onFirstHandling);
+    }
+
+    @Override
+    public void admit(Profile arrival, long forwardedCount) {
+        core.admit(arrival, forwardedCount);
     }
 
     @Override

@@ -269,30 +269,50 @@ class ManagementHooksTest {
     }
 
     @Test
-    void shouldKeepMessagesForAComponentAddedHeldUntilReleasedAndReportItsFirstHandling() throws Exception {
-        var log = new CopyOnWriteArrayList<String>();
+    void shouldHandleTheForwardedMessagesOfAnArrivalBeforeThoseSentToItDirectlyOnceAdmitted() throws Exception {
+        var handled = new CopyOnWriteArrayList<Long>();
         var firstNs = new CompletableFuture<Long>();
+        var toSource = new CopyOnWriteArrayList<Long>();
+        Profile arrival = Profile.of("etherware.arrival", "id", "t1");
         try (var node = EtherwareNode.builder().nodeId("add-held").build()) {
             node.add(MARKER, () -> (message, context) -> context.reply(message, message.contents()));
             node.start();
-            var arrived = new CounterV1(log);
+            // The profile lived elsewhere: a route standing in for the source, displaced by the arrival.
+            node.registry().registerRemote(TARGET, message -> toSource.add(message.contentsAs(Num.class).value()));
+            var arrived = new CounterV1(new CopyOnWriteArrayList<>()) {
+                @Override
+                public void onMessage(Message message, ComponentContext context) {
+                    super.onMessage(message, context);
+                    handled.add(message.contentsAs(Num.class).value() * 1000 + count);
+                }
+            };
             arrived.restore(new Counted(41));
             long beforeNs = node.clock().nanoTime();
-            Shell shell = node.addHeld(TARGET, () -> arrived, firstNs::complete);
+            Shell shell = node.addHeld(TARGET, arrival, () -> arrived, firstNs::complete);
             assertEquals(Shell.State.RUNNING, shell.state(), "started, but held");
-            for (int i = 0; i < 5; i++) {
-                node.send(TARGET, new Num(i));
-            }
-            node.requestBlocking(MARKER, new Text("m")); // the FIFO queue has passed the 5 messages
-            assertEquals(List.of(), log, "nothing is handled before the release");
+            assertEquals(TARGET, shell.profile());
+            assertInstanceOf(Endpoint.Local.class, node.registry().resolve(TARGET));
+            node.send(TARGET, new Num(9)); // sent here directly: penned behind the forwarded ones
+            node.send(arrival, new Num(0)); // forwarded by the source, though it comes later
+            node.admit(arrival, 3); // the source forwarded 3: two are still on their way
+            node.requestBlocking(MARKER, new Text("m")); // the FIFO queue has passed them
+            assertEquals(List.of(), handled, "nothing is handled before the forwarded messages are in");
             assertFalse(firstNs.isDone());
 
-            node.release(TARGET);
-            Await.until("the kept messages", () -> log.size() == 5);
-            assertEquals(List.of("v1:42", "v1:43", "v1:44", "v1:45", "v1:46"), log, "in order, from the restored state");
+            node.send(arrival, new Num(1));
+            node.send(arrival, new Num(2));
+            Await.until("the kept messages", () -> handled.size() == 4);
+            node.send(TARGET, new Num(4));
+            node.send(arrival, new Num(5)); // late from the source: still reaches it
+            Await.until("six messages", () -> handled.size() == 6);
+            assertEquals(List.of(42L, 1043L, 2044L, 9045L, 4046L, 5047L), handled,
+                    "forwarded first, then penned, counting on from the state");
+            assertEquals(List.of(), toSource);
             assertTrue(firstNs.get(30, TimeUnit.SECONDS) >= beforeNs, "the first handling is reported");
-            assertThrows(IllegalArgumentException.class, () -> node.addHeld(TARGET, () -> arrived, ns -> { }),
-                    "a profile names one component");
+            assertThrows(IllegalArgumentException.class, () -> node.addHeld(TARGET, Profile.of("other"), () -> arrived,
+                    ns -> { }), "a profile names one component");
+            node.removeAsync(arrival).get(30, TimeUnit.SECONDS);
+            assertFalse(node.registry().profiles().contains(TARGET), "removed by its arrival profile, both go");
         }
     }
 
