@@ -365,6 +365,18 @@ public final class ManagementService implements Component {
         if (refusedAsRemote(message, operation, step.target())) {
             return;
         }
+        if (step.phase() == MigrationStep.Phase.INSTALL) {
+            // On the dispatcher, like an upgrade's swap: restore and registration are on the gap's
+            // path, and the class was loaded off the dispatchers by PREPARE.
+            try {
+                context.reply(message, migrationTarget.install(step));
+            } catch (LoadFailure e) {
+                failMigration(message, step.target(), e.reason(), e.getMessage());
+            } catch (RuntimeException e) {
+                failMigration(message, step.target(), Reason.SERVICE_FAILED, operation + " failed: " + e);
+            }
+            return;
+        }
         if (step.phase() == MigrationStep.Phase.HANDOVER) {
             // On the dispatcher: the hand-over is on the migration gap's path.
             try {
@@ -384,9 +396,7 @@ public final class ManagementService implements Component {
         try {
             worker.execute(() -> {
                 try {
-                    MigrationStepDone done = step.phase() == MigrationStep.Phase.PREPARE
-                            ? migrationTarget.prepare(step) : migrationTarget.install(step);
-                    context.reply(message, done);
+                    context.reply(message, migrationTarget.prepare(step));
                 } catch (LoadFailure e) {
                     failMigration(message, step.target(), e.reason(), e.getMessage());
                 } catch (RuntimeException e) {

@@ -31,9 +31,10 @@ import org.slf4j.LoggerFactory;
  * held. A component installed but never handed over within
  * {@link ManagementConfig#handoverWaitNs()} is removed again: its source has resumed it by then.
  *
- * <p>Threading: {@link #prepare} and {@link #install} load code and run the component's
- * {@code restore} and {@code onStart}, so they run on the management service's worker;
- * {@link #handover} is quick and runs on the service's dispatcher.
+ * <p>Threading: {@link #prepare} loads code and runs constructors, so it runs on the management
+ * service's worker. {@link #install} runs the component's {@code restore} and {@code onStart}
+ * (which should be quick, as in an upgrade) and {@link #handover} is quick: both run on the
+ * service's dispatcher, because they are on the migration gap's path.
  */
 public final class MigrationTarget {
 
@@ -93,7 +94,7 @@ public final class MigrationTarget {
         return new MigrationStepDone(Phase.PREPARE, profile, loaded.type().getName(), loadNs, -1);
     }
 
-    /** Worker: restores the state into the prepared instance and registers it, held. */
+    /** Dispatcher: restores the state into the prepared instance and registers it, held. */
     public MigrationStepDone install(MigrationStep step) throws LoadFailure {
         Profile profile = step.target();
         Prepared ready = prepared.remove(profile);
