@@ -9,6 +9,8 @@ import io.etherware.core.kernel.Kernel;
 import io.etherware.core.kernel.ProfileResolutionException;
 import io.etherware.core.kernel.SwapTimings;
 import io.etherware.core.message.ContentsTypes;
+import io.etherware.core.message.Criticality;
+import io.etherware.core.message.QoS;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
 import io.etherware.services.management.ManagementFailure.Reason;
@@ -379,7 +381,7 @@ public final class ManagementService implements Component {
             // On the dispatcher, like an upgrade's swap: restore and registration are on the gap's
             // path, and the class was loaded off the dispatchers by PREPARE.
             try {
-                context.reply(message, migrationTarget.install(step));
+                replyBehindEverything(message, migrationTarget.install(step));
             } catch (LoadFailure e) {
                 failMigration(message, step.target(), e.reason(), e.getMessage());
             } catch (RuntimeException e) {
@@ -416,6 +418,20 @@ public final class ManagementService implements Component {
         } catch (RejectedExecutionException e) {
             failMigration(message, step.target(), Reason.SERVICE_FAILED, "the management service of node '"
                     + kernel.nodeId() + "' is stopping");
+        }
+    }
+
+    /**
+     * The answer to an INSTALL, at the lowest criticality: the link's queue sends it after every
+     * message queued before it for the source, among them those this node's senders sent to the
+     * component before it was installed here. The source receives them, and forwards them back,
+     * before it switches (see the package documentation). If a full queue sheds it, the source's
+     * step times out and the component resumes there: nothing is lost.
+     */
+    private void replyBehindEverything(Message request, MigrationStepDone done) {
+        if (request.hasSender()) {
+            kernel.send(new Message(request.sender(), context.self(), kernel.clock().epochNanos(),
+                    QoS.of(Criticality.NONE), done, kernel.newMessageId(), request.messageId()));
         }
     }
 

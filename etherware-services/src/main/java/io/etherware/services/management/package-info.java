@@ -79,9 +79,12 @@
  * whose later message goes straight to the target has had every earlier one forwarded first, into
  * the same FIFO stream. At the target, messages sent directly to the profile after the install are
  * <em>penned</em>: they sort behind the forwarded ones of the same urgency, which were sent earlier
- * (senders at the target reached the component through the source until the install); and the
- * release waits for the forwarded count, because the HANDOVER, sent at HIGH criticality, may
- * overtake less critical forwarded messages in a backlogged queue. Order is per sender and
+ * (senders at the target reached the component through the source until the install). The
+ * target answers the INSTALL at the lowest criticality, so its link's queue sends the answer after
+ * every message its senders sent to the component through the source before: the source has them,
+ * and forwards them, before it switches. The release waits for the forwarded count, because the
+ * HANDOVER, sent at HIGH criticality, may overtake less critical forwarded messages in a
+ * backlogged queue. Order is per sender and
  * urgency, as everywhere in the kernel. Known limit: a third node that sent to the source just
  * before learning of the move (its message crossing the source's announcement) may see that message
  * handled after one it then sent to the target directly; closing it needs per-sender sequence
