@@ -110,6 +110,7 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
      * messages that waited for it are resolved anew (to wherever the profile lives now, or back
      * to their senders as undeliverable).
      */
+    @Override
     public CompletableFuture<Void> removeAsync(Profile profile) {
         return core.remove(profile);
     }
@@ -290,6 +291,17 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
     public CompletableFuture<SwapTimings> swapAsync(Profile profile, Supplier<? extends Component> factory,
                                                     LongConsumer onFirstHandling) {
         return core.swapAsync(profile, factory, onFirstHandling);
+    }
+
+    @Override
+    public Shell addHeld(Profile profile, Profile arrival, Supplier<? extends Component> factory,
+                         LongConsumer onFirstHandling) {
+        return core.addHeld(profile, arrival, factory, onFirstHandling);
+    }
+
+    @Override
+    public void admit(Profile arrival, long forwardedCount) {
+        core.admit(arrival, forwardedCount);
     }
 
     @Override

@@ -2,6 +2,7 @@ package io.etherware.core.kernel;
 
 import io.etherware.core.component.Component;
 import io.etherware.core.component.ComponentState;
+import io.etherware.core.component.Shell;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageId;
 import io.etherware.core.message.Profile;
@@ -112,14 +113,63 @@ public interface Kernel {
 
     /**
      * Moves a local component's profile to another node, at the component's next message
-     * boundary: stops the component, points the profile at {@code route} and forwards the
-     * messages kept by a {@link #holdAsync hold} through it, in order, ahead of any message sent
-     * after the switch. Jobs already queued at a dispatcher for the old component follow when
-     * they are taken, so a migration should hold first and let the queues drain.
+     * boundary: stops the component and forwards the messages kept by a {@link #holdAsync hold}
+     * through {@code route}, in order; messages still queued at dispatchers for it (or sent to it
+     * meanwhile) follow through the route as they are taken; once none is left, the profile is
+     * pointed at {@code route} and the future completes. No message sent through this node
+     * overtakes an earlier one of the same sender and urgency.
      *
      * @param profile the exact profile of a local component
      */
     CompletableFuture<Void> relocateAsync(Profile profile, RemoteRoute route);
+
+    /**
+     * Adds a component that arrives by migration, <em>held</em>: registered under its
+     * {@code profile} (displacing the route to its source) and under {@code arrival}, a profile of
+     * its own to which the source forwards the messages it held and those that still reach it.
+     * Until {@link #admit} it handles nothing and keeps every message; the messages not sent to
+     * {@code arrival} are <em>penned</em>: kept behind the forwarded ones of the same urgency
+     * (also after the admission, until the last penned one has run), because anything that came
+     * through the source was sent before what comes here directly. The component is started now
+     * (its {@link io.etherware.core.component.ComponentContext#self()} is {@code profile}); the
+     * instance the factory returns first should already hold the migrated state. Its first handled
+     * message is reported to {@code onFirstHandling} ({@link NodeClock#nanoTime()} of its start, on
+     * that message's dispatcher after the handling; must be quick).
+     *
+     * <p>The default implementation, for kernels that cannot host migrated components, throws
+     * {@link UnsupportedOperationException}.
+     *
+     * @return the component's shell; if its {@code onStart} threw it is FAILED (remove it)
+     * @throws IllegalArgumentException if either profile is registered to a local component
+     * @throws IllegalStateException    if the node does not run
+     */
+    default Shell addHeld(Profile profile, Profile arrival, Supplier<? extends Component> factory,
+                          LongConsumer onFirstHandling) {
+        throw new UnsupportedOperationException(getClass().getName() + " cannot host migrated components");
+    }
+
+    /**
+     * Completes an arrival ({@link #addHeld}) once {@code forwardedCount} messages to
+     * {@code arrival} have come (at once if they have; 0 for at once): the component is released,
+     * the messages kept so far are handled, the forwarded ones first, in order. The source says
+     * how many it forwarded, because its request to admit may overtake some of them on the way.
+     * {@code arrival} stays registered for messages still on their way through the source.
+     *
+     * @throws IllegalArgumentException if no migrated component arrived as {@code arrival}
+     */
+    default void admit(Profile arrival, long forwardedCount) {
+        throw new UnsupportedOperationException(getClass().getName() + " cannot host migrated components");
+    }
+
+    /**
+     * Removes a local component (by its profile, or the arrival profile of a migrated one):
+     * unregistered at once, stopped at its next message boundary; the messages that waited for it
+     * (also those kept by a hold) are resolved anew. The default implementation throws
+     * {@link UnsupportedOperationException}.
+     */
+    default CompletableFuture<Void> removeAsync(Profile profile) {
+        throw new UnsupportedOperationException(getClass().getName() + " cannot remove components");
+    }
 
     /** The node's counters now. */
     NodeStats stats();

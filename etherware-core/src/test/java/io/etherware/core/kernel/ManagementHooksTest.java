@@ -269,6 +269,92 @@ class ManagementHooksTest {
     }
 
     @Test
+    void shouldHandleTheForwardedMessagesOfAnArrivalBeforeThoseSentToItDirectlyOnceAdmitted() throws Exception {
+        var handled = new CopyOnWriteArrayList<Long>();
+        var firstNs = new CompletableFuture<Long>();
+        var toSource = new CopyOnWriteArrayList<Long>();
+        Profile arrival = Profile.of("etherware.arrival", "id", "t1");
+        try (var node = EtherwareNode.builder().nodeId("add-held").build()) {
+            node.add(MARKER, () -> (message, context) -> context.reply(message, message.contents()));
+            node.start();
+            // The profile lived elsewhere: a route standing in for the source, displaced by the arrival.
+            node.registry().registerRemote(TARGET, message -> toSource.add(message.contentsAs(Num.class).value()));
+            var arrived = new CounterV1(new CopyOnWriteArrayList<>()) {
+                @Override
+                public void onMessage(Message message, ComponentContext context) {
+                    super.onMessage(message, context);
+                    handled.add(message.contentsAs(Num.class).value() * 1000 + count);
+                }
+            };
+            arrived.restore(new Counted(41));
+            long beforeNs = node.clock().nanoTime();
+            Shell shell = node.addHeld(TARGET, arrival, () -> arrived, firstNs::complete);
+            assertEquals(Shell.State.RUNNING, shell.state(), "started, but held");
+            assertEquals(TARGET, shell.profile());
+            assertInstanceOf(Endpoint.Local.class, node.registry().resolve(TARGET));
+            node.send(TARGET, new Num(9)); // sent here directly: penned behind the forwarded ones
+            node.send(arrival, new Num(0)); // forwarded by the source, though it comes later
+            node.admit(arrival, 3); // the source forwarded 3: two are still on their way
+            node.requestBlocking(MARKER, new Text("m")); // the FIFO queue has passed them
+            assertEquals(List.of(), handled, "nothing is handled before the forwarded messages are in");
+            assertFalse(firstNs.isDone());
+
+            node.send(arrival, new Num(1));
+            node.send(arrival, new Num(2));
+            Await.until("the kept messages", () -> handled.size() == 4);
+            node.send(TARGET, new Num(4));
+            node.send(arrival, new Num(5)); // late from the source: still reaches it
+            Await.until("six messages", () -> handled.size() == 6);
+            assertEquals(List.of(42L, 1043L, 2044L, 9045L, 4046L, 5047L), handled,
+                    "forwarded first, then penned, counting on from the state");
+            assertEquals(List.of(), toSource);
+            assertTrue(firstNs.get(30, TimeUnit.SECONDS) >= beforeNs, "the first handling is reported");
+            assertThrows(IllegalArgumentException.class, () -> node.addHeld(TARGET, Profile.of("other"), () -> arrived,
+                    ns -> { }), "a profile names one component");
+            node.removeAsync(arrival).get(30, TimeUnit.SECONDS);
+            assertFalse(node.registry().profiles().contains(TARGET), "removed by its arrival profile, both go");
+        }
+    }
+
+    @Test
+    void shouldForwardTheMessagesStillQueuedForARelocatedComponentBeforeSwitchingItsProfile() throws Exception {
+        var forwarded = new CopyOnWriteArrayList<Long>();
+        RemoteRoute route = message -> forwarded.add(message.contentsAs(Num.class).value());
+        var dispatcherBusy = new CountDownLatch(1);
+        var unblock = new CountDownLatch(1);
+        Profile blocker = Profile.of("blocker");
+        try (var node = EtherwareNode.builder().nodeId("relocate-queued").build()) {
+            node.add(TARGET, () -> (message, context) -> { });
+            node.add(blocker, () -> (message, context) -> {
+                dispatcherBusy.countDown();
+                try {
+                    unblock.await(30, TimeUnit.SECONDS); // bounded: the test fails rather than hangs
+                } catch (InterruptedException e) {
+                    Thread.currentThread().interrupt();
+                }
+            });
+            node.start();
+            node.send(blocker, new Text("hold the one dispatcher"));
+            assertTrue(dispatcherBusy.await(30, TimeUnit.SECONDS));
+            node.hold(TARGET);
+            for (long i = 1; i <= 5; i++) {
+                node.send(TARGET, new Num(i)); // queued at the busy dispatcher, not yet kept
+            }
+            CompletableFuture<Void> relocated = node.relocateAsync(TARGET, route);
+            node.send(TARGET, new Num(6)); // behind the queued ones: the profile is not switched yet
+            assertFalse(relocated.isDone(), "the switch waits for the queued messages");
+            assertInstanceOf(Endpoint.Local.class, node.registry().resolve(TARGET));
+            assertEquals(List.of(), forwarded);
+
+            unblock.countDown();
+            relocated.get(30, TimeUnit.SECONDS);
+            node.send(TARGET, new Num(7)); // straight through the route now
+            assertEquals(LongStream.rangeClosed(1, 7).boxed().toList(), forwarded, "in order, each once");
+            assertInstanceOf(Endpoint.Remote.class, node.registry().resolve(TARGET));
+        }
+    }
+
+    @Test
     void shouldSettleAKeptRequestOutcomeLocallyWhenRelocated() throws Exception {
         var forwarded = new CopyOnWriteArrayList<Message>();
         var replyNow = new CountDownLatch(1);

@@ -12,13 +12,16 @@ import java.util.Objects;
 import java.util.concurrent.CompletableFuture;
 
 /**
- * The client of the management services: asks a node to upgrade one of its components and
- * returns the outcome with its timings.
+ * The client of the management services: asks a node to upgrade one of its components, or to
+ * migrate one to another node, and returns the outcome with its timings.
  *
  * <pre>{@code
  * UpgradeResult result = Management.upgrade(node, "plant-1", Profile.parse("controller[car=1]"),
  *         Implementation.ofClass("com.example.ControllerV2")).join();
  * log.info("swapped in {} us", result.gapNs() / 1_000);
+ *
+ * MigrationResult moved = Management.migrate(node, "node-2", Profile.parse("controller[car=1]"), "node-1").join();
+ * log.info("migration gap {} us", moved.gapNs() / 1_000);
  * }</pre>
  *
  * <p>Requests travel as messages at {@link Criticality#HIGH} (paper Section VI-C1: the upgrade
@@ -53,13 +56,18 @@ public final class Management {
 
     /**
      * Registers the management contents ({@code etherware.upgrade}, {@code etherware.upgradeResult},
-     * {@code etherware.managementFailure}) in {@code types}; done for {@link ContentsTypes#shared()}
+     * {@code etherware.managementFailure}, {@code etherware.migrate}, {@code etherware.migrationResult},
+     * {@code etherware.migrationStep}, {@code etherware.migrationStepDone}) in {@code types}; done for {@link ContentsTypes#shared()}
      * when this class or the {@link ManagementService} loads.
      */
     public static void registerContents(ContentsTypes types) {
         types.register("etherware.upgrade", UpgradeRequest.class);
         types.register("etherware.upgradeResult", UpgradeResult.class);
         types.register("etherware.managementFailure", ManagementFailure.class);
+        types.register("etherware.migrate", MigrateRequest.class);
+        types.register("etherware.migrationResult", MigrationResult.class);
+        types.register("etherware.migrationStep", MigrationStep.class);
+        types.register("etherware.migrationStepDone", MigrationStepDone.class);
     }
 
     /** {@link #upgrade(Kernel, String, Profile, Implementation, Duration)} with {@link #DEFAULT_TIMEOUT}. */
@@ -101,6 +109,67 @@ public final class Management {
         Objects.requireNonNull(context, "context");
         return context.request(profileOf(nodeId), UpgradeRequest.of(target, implementation), REQUEST_QOS,
                 timeout.toNanos()).thenApply(Management::upgradeResultOf);
+    }
+
+    /** {@link #migrate(Kernel, String, Profile, String, Duration)} with {@link #DEFAULT_TIMEOUT}. */
+    public static CompletableFuture<MigrationResult> migrate(Kernel kernel, String fromNode, Profile target,
+                                                             String toNode) {
+        return migrate(kernel, fromNode, MigrateRequest.of(target, toNode), DEFAULT_TIMEOUT);
+    }
+
+    /**
+     * Asks node {@code fromNode} to move its component {@code target} to node {@code toNode}, as
+     * an instance of the class it runs now (constructed there with its no-arg constructor), from
+     * outside any component ({@code kernel}'s node profile is the sender).
+     *
+     * @return the outcome with its phase timings and gap; fails with {@link ManagementException}
+     *         when a node refused or the migration failed (the component then runs on at
+     *         {@code fromNode}, nothing lost), or with
+     *         {@link io.etherware.core.component.RequestFailedException} when no answer came
+     */
+    public static CompletableFuture<MigrationResult> migrate(Kernel kernel, String fromNode, Profile target,
+                                                             String toNode, Duration timeout) {
+        return migrate(kernel, fromNode, MigrateRequest.of(target, toNode), timeout);
+    }
+
+    /**
+     * Sends {@code request} (e.g. {@link MigrateRequest#of(Profile, String, Implementation)} for
+     * another class or a configured constructor) to node {@code fromNode}, from outside any
+     * component.
+     */
+    public static CompletableFuture<MigrationResult> migrate(Kernel kernel, String fromNode, MigrateRequest request,
+                                                             Duration timeout) {
+        Objects.requireNonNull(kernel, "kernel");
+        var message = new Message(profileOf(fromNode), kernel.profile(), kernel.clock().epochNanos(), REQUEST_QOS,
+                request, kernel.newMessageId(), null);
+        return kernel.request(message, timeout.toNanos()).thenApply(Management::migrationResultOf);
+    }
+
+    /**
+     * From a component (the paper's Requester, Section VI-C2): asks node {@code fromNode} to move
+     * {@code target} to node {@code toNode}. The future completes on the requesting component's
+     * dispatcher, like any {@link ComponentContext#request}; never wait for it there.
+     */
+    public static CompletableFuture<MigrationResult> migrate(ComponentContext context, String fromNode,
+                                                             MigrateRequest request, Duration timeout) {
+        Objects.requireNonNull(context, "context");
+        return context.request(profileOf(fromNode), request, REQUEST_QOS, timeout.toNanos())
+                .thenApply(Management::migrationResultOf);
+    }
+
+    /**
+     * The result an answer to a migration request carries.
+     *
+     * @throws ManagementException   if the answer is a {@link ManagementFailure}
+     * @throws IllegalStateException if the answer is anything else
+     */
+    public static MigrationResult migrationResultOf(Message reply) {
+        return switch (reply.contents()) {
+            case MigrationResult result -> result;
+            case ManagementFailure failure -> throw new ManagementException(failure);
+            default -> throw new IllegalStateException("the answer " + reply.messageId() + " to a migration carries "
+                    + reply.contents().getClass().getSimpleName() + ", not a migration result");
+        };
     }
 
     /**

@@ -18,6 +18,12 @@ import java.util.Objects;
  *       authentication of links yet, so a peer could otherwise run code here);</li>
  *   <li>{@code firstMessageWait} 1 s: how long the answer to an upgrade waits for the new logic's
  *       first message, to report the swap gap; after that it is answered with {@code gapNs = -1};</li>
+ *   <li>{@code migrationStepTimeout} 2 s: how long the source of a migration waits for each answer
+ *       of the target (prepare, install, hand-over); a step without an answer fails the migration
+ *       and the component resumes at the source;</li>
+ *   <li>{@code handoverWait} 5 s: how long a target keeps a migrated component held, waiting for the
+ *       source's hand-over, before it gives the migration up and removes the component (the source
+ *       has then resumed it after its own step timeout);</li>
  *   <li>{@code classLoader} the system class loader: where class-path implementations come from,
  *       and the parent of the jars' class loaders.</li>
  * </ul>
@@ -28,10 +34,13 @@ import java.util.Objects;
  *                             resolved)
  * @param acceptRemoteRequests whether requests made on another node are served
  * @param firstMessageWaitNs   how long an upgrade's answer waits for the new logic's first message
+ *                             (also a migration's hand-over answer, for the gap)
+ * @param migrationStepTimeoutNs how long a migration's source waits for each answer of the target
+ * @param handoverWaitNs       how long a migration's target waits for the hand-over
  * @param classLoader          the node's class loader for implementations
  */
 public record ManagementConfig(List<Path> allowlist, boolean acceptRemoteRequests, long firstMessageWaitNs,
-                               ClassLoader classLoader) {
+                               long migrationStepTimeoutNs, long handoverWaitNs, ClassLoader classLoader) {
 
     public ManagementConfig {
         allowlist = List.copyOf(allowlist);
@@ -44,6 +53,13 @@ public record ManagementConfig(List<Path> allowlist, boolean acceptRemoteRequest
         if (firstMessageWaitNs < 0) {
             throw new IllegalArgumentException("firstMessageWaitNs=" + firstMessageWaitNs
                     + " must be >= 0 (0 answers at once, without the gap)");
+        }
+        if (migrationStepTimeoutNs <= 0) {
+            throw new IllegalArgumentException("migrationStepTimeoutNs=" + migrationStepTimeoutNs + " must be > 0");
+        }
+        if (handoverWaitNs <= migrationStepTimeoutNs) {
+            throw new IllegalArgumentException("handoverWaitNs=" + handoverWaitNs + " must be > migrationStepTimeoutNs="
+                    + migrationStepTimeoutNs + ": a target must not give up a migration its source still waits for");
         }
         Objects.requireNonNull(classLoader, "classLoader=null: leave the default (the system class loader)");
     }
@@ -62,6 +78,8 @@ public record ManagementConfig(List<Path> allowlist, boolean acceptRemoteRequest
         private final List<Path> allowlist = new ArrayList<>();
         private boolean acceptRemoteRequests;
         private long firstMessageWaitNs = Duration.ofSeconds(1).toNanos();
+        private long migrationStepTimeoutNs = Duration.ofSeconds(2).toNanos();
+        private long handoverWaitNs = Duration.ofSeconds(5).toNanos();
         private ClassLoader classLoader = ClassLoader.getSystemClassLoader();
 
         Builder() {
@@ -105,6 +123,20 @@ public record ManagementConfig(List<Path> allowlist, boolean acceptRemoteRequest
             return this;
         }
 
+        /** How long a migration's source waits for each answer of the target (default 2 s). */
+        public Builder migrationStepTimeout(Duration value) {
+            Objects.requireNonNull(value, "migrationStepTimeout");
+            migrationStepTimeoutNs = value.toNanos();
+            return this;
+        }
+
+        /** How long a migration's target keeps the arrived component held for the hand-over (default 5 s). */
+        public Builder handoverWait(Duration value) {
+            Objects.requireNonNull(value, "handoverWait");
+            handoverWaitNs = value.toNanos();
+            return this;
+        }
+
         /** Where class-path implementations come from, and the parent of jar class loaders. */
         public Builder classLoader(ClassLoader value) {
             classLoader = Objects.requireNonNull(value, "classLoader");
@@ -113,7 +145,8 @@ public record ManagementConfig(List<Path> allowlist, boolean acceptRemoteRequest
 
         /** The validated configuration. */
         public ManagementConfig build() {
-            return new ManagementConfig(allowlist, acceptRemoteRequests, firstMessageWaitNs, classLoader);
+            return new ManagementConfig(allowlist, acceptRemoteRequests, firstMessageWaitNs, migrationStepTimeoutNs,
+                    handoverWaitNs, classLoader);
         }
     }
 }

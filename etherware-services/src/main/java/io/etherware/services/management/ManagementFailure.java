@@ -6,12 +6,12 @@ import java.util.Objects;
 
 /**
  * The answer to a management request that was refused or failed, registered as
- * {@code etherware.managementFailure}. Whatever the reason, the component kept its old logic and
- * no message to it was lost.
+ * {@code etherware.managementFailure}. Whatever the reason, the component kept its old logic (an
+ * upgrade) or resumed where it was (a migration), and no message to it was lost.
  *
  * <p>Immutable; safe to share between threads.
  *
- * @param operation what was asked, e.g. {@code upgrade}
+ * @param operation what was asked, e.g. {@code upgrade}, {@code migrate}, or a migration step
  * @param target    the component's profile as the request named it
  * @param reason    the kind of failure
  * @param error     what went wrong, naming the offending value and, where there is one, the fix
@@ -43,8 +43,17 @@ public record ManagementFailure(String operation, Profile target, Reason reason,
         INVALID_IMPLEMENTATION,
         /** The class's constructor or static initializer threw. */
         CONSTRUCTION_FAILED,
-        /** The new logic's {@code restore} or {@code onStart} threw; the old logic resumed. */
+        /**
+         * The new logic's {@code restore} or {@code onStart} threw (for a migration: the
+         * snapshot at the source, or {@code restore} or {@code onStart} at the target); the old
+         * logic resumed.
+         */
         ROLLED_BACK,
+        /**
+         * The target node of a migration is not connected, refused nothing but did not answer a
+         * step in time, or went away; the component resumed at the source.
+         */
+        TARGET_UNREACHABLE,
         /** The management service is stopping or failed unexpectedly. */
         SERVICE_FAILED
     }

@@ -9,11 +9,16 @@ import io.etherware.core.kernel.Kernel;
 import io.etherware.core.kernel.ProfileResolutionException;
 import io.etherware.core.kernel.SwapTimings;
 import io.etherware.core.message.ContentsTypes;
+import io.etherware.core.message.Criticality;
+import io.etherware.core.message.QoS;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
 import io.etherware.services.management.ManagementFailure.Reason;
 import io.etherware.services.management.internal.ImplementationLoader;
 import io.etherware.services.management.internal.LoadFailure;
+import io.etherware.services.management.internal.MigrationSource;
+import io.etherware.services.management.internal.MigrationTarget;
+import io.etherware.services.network.NetworkMessenger;
 import java.net.URLClassLoader;
 import java.util.Map;
 import java.util.Objects;
@@ -31,8 +36,10 @@ import org.slf4j.Logger;
 
 /**
  * A node's management service (paper Section VI-C): a component at
- * {@code etherware.management[node=<id>]} that serves {@link UpgradeRequest}s for the node's own
- * components and answers each with an {@link UpgradeResult} or a {@link ManagementFailure}.
+ * {@code etherware.management[node=<id>]} that serves {@link UpgradeRequest}s and
+ * {@link MigrateRequest}s for the node's own components, answering each with an
+ * {@link UpgradeResult}, a {@link MigrationResult} or a {@link ManagementFailure}, and the
+ * {@link MigrationStep}s of migrations coming to this node.
  *
  * <h2>An upgrade, step by step</h2>
  * <ol>
@@ -61,10 +68,19 @@ import org.slf4j.Logger;
  * time. The swap runs where the kernel puts it: on the service's dispatcher if the component is
  * between messages, else on the component's dispatcher right after its current message. Either
  * way the new logic's {@code restore} and {@code onStart} run on a dispatcher and should be quick.
+ *
+ * <h2>A migration</h2>
+ * The steps and the ordering argument are in the package documentation. At the source, the whole
+ * migration runs on the worker, which waits for the target's answers (so a node runs one management
+ * operation at a time). At the target, PREPARE (loading, constructing) runs on the worker; INSTALL
+ * ({@code restore}, {@code onStart}, registration) and HANDOVER run on the service's dispatcher,
+ * because they are on the migration gap's path. Migrating from this node needs the
+ * {@link NetworkMessenger} given to {@link #install(EtherwareNode, ManagementConfig, NetworkMessenger)}.
  */
 public final class ManagementService implements Component {
 
     private static final String UPGRADE = "upgrade";
+    private static final String MIGRATE = "migrate";
 
     static {
         Management.registerContents(ContentsTypes.shared());
@@ -72,12 +88,15 @@ public final class ManagementService implements Component {
 
     private final Kernel kernel;
     private final ManagementConfig config;
+    private final NetworkMessenger network;
     private final ImplementationLoader loader;
     /** The jar class loader behind each component upgraded from a jar; closed when replaced. */
     private final Map<Profile, URLClassLoader> jarLoaders;
     private final Counters counters;
     private ExecutorService worker;
     private Executor continuations;
+    private MigrationSource migrationSource;
+    private MigrationTarget migrationTarget;
     private ComponentContext context;
     private Logger log;
 
@@ -86,13 +105,23 @@ public final class ManagementService implements Component {
      * {@link Management#profileOf}, or use {@link #install}.
      */
     public ManagementService(Kernel kernel, ManagementConfig config) {
-        this(kernel, config, new Counters(), new ConcurrentHashMap<>());
+        this(kernel, config, null);
     }
 
-    private ManagementService(Kernel kernel, ManagementConfig config, Counters counters,
+    /**
+     * A service managing the components of {@code kernel}'s node, able to migrate them to the
+     * nodes {@code network} connects it to (null: no migrations from this node; it can still be
+     * the target of one).
+     */
+    public ManagementService(Kernel kernel, ManagementConfig config, NetworkMessenger network) {
+        this(kernel, config, network, new Counters(), new ConcurrentHashMap<>());
+    }
+
+    private ManagementService(Kernel kernel, ManagementConfig config, NetworkMessenger network, Counters counters,
                               Map<Profile, URLClassLoader> jarLoaders) {
         this.kernel = Objects.requireNonNull(kernel, "kernel");
         this.config = Objects.requireNonNull(config, "config");
+        this.network = network;
         this.loader = new ImplementationLoader(config.allowlist(), config.classLoader());
         this.counters = counters;
         this.jarLoaders = jarLoaders;
@@ -104,12 +133,20 @@ public final class ManagementService implements Component {
      * @return the service; if its supervision restarts it, the new instances share its counters
      */
     public static ManagementService install(EtherwareNode node, ManagementConfig config) {
-        var first = new ManagementService(node, config);
+        return install(node, config, null);
+    }
+
+    /**
+     * Adds a management service to {@code node} that can also migrate its components to the
+     * nodes {@code network} connects it to. Start the messenger first.
+     */
+    public static ManagementService install(EtherwareNode node, ManagementConfig config, NetworkMessenger network) {
+        var first = new ManagementService(node, config, network);
         var unused = new AtomicReference<>(first);
         node.add(Management.profileOf(node.nodeId()), () -> {
             ManagementService instance = unused.getAndSet(null);
             return instance != null ? instance
-                    : new ManagementService(node, config, first.counters, first.jarLoaders);
+                    : new ManagementService(node, config, network, first.counters, first.jarLoaders);
         });
         return first;
     }
@@ -129,6 +166,8 @@ public final class ManagementService implements Component {
                 task.run();
             }
         };
+        this.migrationSource = new MigrationSource(kernel, config, network);
+        this.migrationTarget = new MigrationTarget(kernel, config, loader, continuations, this::installed);
     }
 
     @Override
@@ -140,6 +179,8 @@ public final class ManagementService implements Component {
     public void onMessage(Message message, ComponentContext context) {
         switch (message.contents()) {
             case UpgradeRequest request -> accept(message, request);
+            case MigrateRequest request -> acceptMigration(message, request);
+            case MigrationStep step -> acceptStep(message, step);
             case Prepared prepared when context.self().equals(message.sender()) -> swap(prepared);
             default -> {
                 if (message.hasSender() && !message.isReply()) {
@@ -154,17 +195,25 @@ public final class ManagementService implements Component {
         }
     }
 
+    /** Refuses (and answers) a request made on another node unless remote requests are enabled. */
+    private boolean refusedAsRemote(Message message, String operation, Profile target) {
+        String origin = message.messageId().nodeId();
+        if (origin.equals(kernel.nodeId()) || config.acceptRemoteRequests()) {
+            return false;
+        }
+        counters.refused.increment();
+        log.warn("refused {} request {} of '{}' from node '{}' (sender '{}'): remote requests are disabled",
+                operation, message.messageId(), target, origin, message.sender());
+        reply(message, new ManagementFailure(operation, target, Reason.REMOTE_REFUSED, "request "
+                + message.messageId() + " was made on node '" + origin + "'; node '" + kernel.nodeId()
+                + "' refuses management requests from other nodes (enable them with"
+                + " ManagementConfig.builder().acceptRemoteRequests(true))"));
+        return true;
+    }
+
     private void accept(Message message, UpgradeRequest request) {
         long receivedNs = kernel.clock().nanoTime();
-        String origin = message.messageId().nodeId();
-        if (!origin.equals(kernel.nodeId()) && !config.acceptRemoteRequests()) {
-            counters.refused.increment();
-            log.warn("refused upgrade request {} of '{}' from node '{}' (sender '{}'): remote requests are disabled",
-                    message.messageId(), request.target(), origin, message.sender());
-            reply(message, new ManagementFailure(UPGRADE, request.target(), Reason.REMOTE_REFUSED, "request "
-                    + message.messageId() + " was made on node '" + origin + "'; node '" + kernel.nodeId()
-                    + "' refuses management requests from other nodes (enable them with"
-                    + " ManagementConfig.builder().acceptRemoteRequests(true))"));
+        if (refusedAsRemote(message, UPGRADE, request.target())) {
             return;
         }
         try {
@@ -272,17 +321,125 @@ public final class ManagementService implements Component {
         }
         if (!(endpoint instanceof Endpoint.Local local)) {
             throw new LoadFailure(Reason.UNKNOWN_COMPONENT, "'" + target + "' is hosted on another node, not on '"
-                    + kernel.nodeId() + "'; send the upgrade to that node's management service");
+                    + kernel.nodeId() + "'; send the request to that node's management service");
         }
         Shell shell = local.shell();
         if (shell.profile().equals(context.self())) {
-            throw new LoadFailure(Reason.BAD_REQUEST, "the management service cannot upgrade itself");
+            throw new LoadFailure(Reason.BAD_REQUEST, "the management service cannot upgrade or migrate itself");
         }
         if (shell.state() != Shell.State.RUNNING) {
             throw new LoadFailure(Reason.NOT_RUNNING, "component '" + shell.profile() + "' is " + shell.state()
-                    + "; only a RUNNING component can be upgraded");
+                    + "; only a RUNNING component can be upgraded or migrated");
         }
         return shell;
+    }
+
+    // ---------------------------------------------------------------- migration
+
+    private void acceptMigration(Message message, MigrateRequest request) {
+        long receivedNs = kernel.clock().nanoTime();
+        if (refusedAsRemote(message, MIGRATE, request.target())) {
+            return;
+        }
+        try {
+            worker.execute(() -> migrate(message, request, receivedNs));
+        } catch (RejectedExecutionException e) {
+            failMigration(message, request.target(), Reason.SERVICE_FAILED, "the management service of node '"
+                    + kernel.nodeId() + "' is stopping");
+        }
+    }
+
+    /** Worker thread: the whole migration, blocking for the target's answers. */
+    private void migrate(Message message, MigrateRequest request, long receivedNs) {
+        try {
+            Shell shell = localShell(request.target());
+            MigrationResult result = migrationSource.migrate(shell, request, receivedNs);
+            installed(result.target(), null);
+            counters.migrated.increment();
+            log.info("migrated '{}' to '{}' ({} held messages): prepare {} us, quiesce {} us, transfer {} us,"
+                    + " relocate {} us, gap {}", result.target(), result.toNode(), result.heldMessages(),
+                    result.prepareNs() / 1_000, result.quiesceNs() / 1_000, result.transferNs() / 1_000,
+                    result.relocateNs() / 1_000, result.gapNs() < 0 ? "unknown" : result.gapNs() / 1_000 + " us");
+            if (message.hasSender()) {
+                context.reply(message, result);
+            }
+        } catch (LoadFailure e) {
+            failMigration(message, request.target(), e.reason(), e.getMessage());
+        } catch (RuntimeException e) {
+            log.error("migration of '{}' failed unexpectedly", request.target(), e);
+            failMigration(message, request.target(), Reason.SERVICE_FAILED, "the migration failed unexpectedly: " + e);
+        }
+    }
+
+    /** A step of a migration into this node, from its source's management service. */
+    private void acceptStep(Message message, MigrationStep step) {
+        String operation = "migration " + step.phase();
+        if (refusedAsRemote(message, operation, step.target())) {
+            return;
+        }
+        if (step.phase() == MigrationStep.Phase.INSTALL) {
+            // On the dispatcher, like an upgrade's swap: restore and registration are on the gap's
+            // path, and the class was loaded off the dispatchers by PREPARE.
+            try {
+                replyBehindEverything(message, migrationTarget.install(step));
+            } catch (LoadFailure e) {
+                failMigration(message, step.target(), e.reason(), e.getMessage());
+            } catch (RuntimeException e) {
+                failMigration(message, step.target(), Reason.SERVICE_FAILED, operation + " failed: " + e);
+            }
+            return;
+        }
+        if (step.phase() == MigrationStep.Phase.HANDOVER) {
+            // On the dispatcher: the hand-over is on the migration gap's path.
+            try {
+                migrationTarget.handover(step).whenComplete((done, error) -> {
+                    if (error != null) {
+                        failMigration(message, step.target(), Reason.SERVICE_FAILED, "hand-over failed: " + error);
+                    } else {
+                        counters.migratedIn.increment();
+                        context.reply(message, done);
+                    }
+                });
+            } catch (LoadFailure e) {
+                failMigration(message, step.target(), e.reason(), e.getMessage());
+            }
+            return;
+        }
+        try {
+            worker.execute(() -> {
+                try {
+                    context.reply(message, migrationTarget.prepare(step));
+                } catch (LoadFailure e) {
+                    failMigration(message, step.target(), e.reason(), e.getMessage());
+                } catch (RuntimeException e) {
+                    failMigration(message, step.target(), Reason.SERVICE_FAILED, operation + " failed: " + e);
+                }
+            });
+        } catch (RejectedExecutionException e) {
+            failMigration(message, step.target(), Reason.SERVICE_FAILED, "the management service of node '"
+                    + kernel.nodeId() + "' is stopping");
+        }
+    }
+
+    /**
+     * The answer to an INSTALL, at the lowest criticality: the link's queue sends it after every
+     * message queued before it for the source, among them those this node's senders sent to the
+     * component before it was installed here. The source receives them, and forwards them back,
+     * before it switches (see the package documentation). If a full queue sheds it, the source's
+     * step times out and the component resumes there: nothing is lost.
+     */
+    private void replyBehindEverything(Message request, MigrationStepDone done) {
+        if (request.hasSender()) {
+            kernel.send(new Message(request.sender(), context.self(), kernel.clock().epochNanos(),
+                    QoS.of(Criticality.NONE), done, kernel.newMessageId(), request.messageId()));
+        }
+    }
+
+    private void failMigration(Message message, Profile target, Reason reason, String error) {
+        counters.failed.increment();
+        String operation = message.contents() instanceof MigrationStep step ? "migration " + step.phase() : MIGRATE;
+        log.warn("{} request {} of '{}' failed ({}): {}", operation, message.messageId(), target, reason, error);
+        reply(message, new ManagementFailure(operation, target, reason, error));
     }
 
     /** After a successful swap: the jar loader of the replaced logic is no longer needed. */
@@ -330,7 +487,17 @@ public final class ManagementService implements Component {
         return counters.upgraded.sum();
     }
 
-    /** Upgrades that failed (refusals not included). Any thread. */
+    /** Migrations of this node's components to other nodes answered with a result. Any thread. */
+    public long migratedCount() {
+        return counters.migrated.sum();
+    }
+
+    /** Migrated components that arrived at this node and were handed over. Any thread. */
+    public long migratedInCount() {
+        return counters.migratedIn.sum();
+    }
+
+    /** Upgrades and migrations (or their steps here) that failed (refusals not included). Any thread. */
     public long failedCount() {
         return counters.failed.sum();
     }
@@ -343,6 +510,8 @@ public final class ManagementService implements Component {
     /** The counters, shared by the instances that restarts make. */
     private static final class Counters {
         final LongAdder upgraded = new LongAdder();
+        final LongAdder migrated = new LongAdder();
+        final LongAdder migratedIn = new LongAdder();
         final LongAdder failed = new LongAdder();
         final LongAdder refused = new LongAdder();
     }

@@ -56,6 +56,11 @@ public final class KernelCore implements Kernel, JobRunner {
     private static final Logger log = LoggerFactory.getLogger(Kernel.class);
     /** Extra wait of a blocking request beyond its timeout, for the timer thread to fire. */
     private static final long BLOCKING_GRACE_NS = TimeUnit.SECONDS.toNanos(5);
+    /**
+     * Added to the sequence of a penned job (see {@link LocalShell#pens}): it then sorts after the
+     * jobs of the same urgency not penned. Far above any sequence a node reaches.
+     */
+    static final long PEN_OFFSET = 1L << 62;
 
     static {
         registerContents(ContentsTypes.shared());
@@ -168,9 +173,22 @@ public final class KernelCore implements Kernel, JobRunner {
                 && nodeId.equals(message.messageId().nodeId())) {
             releaseNs = tick.releaseNs();
         }
-        Job job = new Job(message, shell.name(), shell, jobSequence.getAndIncrement(), releaseNs);
+        if (!shell.enterQueue()) {
+            deliverRemote(message, shell.forwardRoute()); // relocated, and nothing of it is queued here
+            return;
+        }
+        long sequence = jobSequence.getAndIncrement();
+        if (shell.pens(message)) {
+            sequence += PEN_OFFSET;
+        }
+        Job job = new Job(message, shell.name(), shell, sequence, releaseNs);
         if (!scheduler.submit(job)) {
+            shell.leaveQueue();
             discard(job);
+        }
+        ArrivalPen pen = shell.pen();
+        if (pen != null && pen.isArrival(message)) {
+            pen.arrived(); // after the submission: the admission's hand-over queues behind it
         }
     }
 
@@ -401,6 +419,53 @@ public final class KernelCore implements Kernel, JobRunner {
     // ---------------------------------------------------------------- lifecycle
 
     /** Adds a component; starts it at once if the node runs. */
+    @Override
+    public Shell addHeld(Profile profile, Profile arrival, Supplier<? extends Component> factory,
+                         LongConsumer onFirstHandling) {
+        Objects.requireNonNull(profile, "profile");
+        Objects.requireNonNull(arrival, "arrival");
+        Objects.requireNonNull(onFirstHandling, "onFirstHandling");
+        LocalShell shell;
+        synchronized (lifecycleLock) {
+            if (state != NodeState.RUNNING) {
+                throw new IllegalStateException("node '" + nodeId + "' is " + state + "; a migrated component arrives"
+                        + " only at a running node");
+            }
+            shell = new LocalShell(this, profile, factory, config.supervision());
+            // Held before it is reachable: nothing reaches it unheld.
+            shell.arriveHeld(arrival, onFirstHandling);
+            registry.register(arrival, shell.endpoint());
+            try {
+                registry.register(profile, shell.endpoint()); // displaces the route to the source
+            } catch (IllegalArgumentException e) {
+                registry.unregister(arrival, shell.endpoint());
+                throw e;
+            }
+            shells.add(shell);
+            everAdded.add(shell);
+        }
+        shell.start();
+        return shell;
+    }
+
+    @Override
+    public void admit(Profile arrival, long forwardedCount) {
+        Endpoint endpoint = registry.lookup(Objects.requireNonNull(arrival, "arrival"));
+        if (!(endpoint instanceof Endpoint.Local local) || local.shell().profile().equals(arrival)) {
+            throw new IllegalArgumentException("no migrated component arrived as '" + arrival + "'");
+        }
+        ArrivalPen pen = ((LocalShell) local.shell()).pen();
+        if (pen == null) {
+            throw new IllegalArgumentException("'" + local.shell().profile() + "' did not arrive by migration");
+        }
+        pen.admitAfter(forwardedCount);
+    }
+
+    @Override
+    public CompletableFuture<Void> removeAsync(Profile profile) {
+        return remove(profile);
+    }
+
     public Shell add(Profile profile, Supplier<? extends Component> factory, SupervisionPolicy policy) {
         LocalShell shell;
         boolean startNow;
@@ -430,11 +495,13 @@ public final class KernelCore implements Kernel, JobRunner {
         LocalShell shell;
         synchronized (lifecycleLock) {
             Endpoint endpoint = registry.lookup(profile);
-            if (!(endpoint instanceof Endpoint.Local local) || !local.shell().profile().equals(profile)) {
+            if (!(endpoint instanceof Endpoint.Local local) || !registry.profiles().contains(profile)) {
                 throw new IllegalArgumentException("no local component has profile '" + profile + "'");
             }
             shell = (LocalShell) local.shell();
+            // By its profile, or by the arrival profile of a migrated component: both go.
             registry.unregister(profile, endpoint);
+            registry.unregister(shell.profile(), endpoint);
             shells.remove(shell);
         }
         if (shell.cancelIfUnstarted()) {
@@ -458,9 +525,8 @@ public final class KernelCore implements Kernel, JobRunner {
         var relocated = new CompletableFuture<Void>();
         shell.atBoundary(() -> {
             try {
-                shell.relocate(registry, new Endpoint.Remote(route));
                 shells.remove(shell);
-                relocated.complete(null);
+                shell.relocate(registry, new Endpoint.Remote(route), relocated);
             } catch (RuntimeException e) {
                 relocated.completeExceptionally(e);
             }

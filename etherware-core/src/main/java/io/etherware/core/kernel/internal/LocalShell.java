@@ -41,6 +41,9 @@ public final class LocalShell implements Shell {
     private static final VarHandle FAILED;
     private static final VarHandle RESTARTS;
     private static final VarHandle LAST_HANDLING_NS;
+    private static final VarHandle QUEUED;
+    /** In {@link #queued}: the profile now routes past this shell; send straight to {@link #forwardTo}. */
+    private static final int DIRECT = 1 << 30;
 
     static {
         try {
@@ -49,6 +52,7 @@ public final class LocalShell implements Shell {
             FAILED = lookup.findVarHandle(LocalShell.class, "failed", long.class);
             RESTARTS = lookup.findVarHandle(LocalShell.class, "restarts", long.class);
             LAST_HANDLING_NS = lookup.findVarHandle(LocalShell.class, "lastHandlingNs", long.class);
+            QUEUED = lookup.findVarHandle(LocalShell.class, "queued", int.class);
         } catch (ReflectiveOperationException e) {
             throw new ExceptionInInitializerError(e);
         }
@@ -77,6 +81,21 @@ public final class LocalShell implements Shell {
     private long restarts;
     @SuppressWarnings("unused") // through LAST_HANDLING_NS
     private long lastHandlingNs;
+    /**
+     * Jobs of this component submitted and not yet run (queued at a dispatcher, or kept at the
+     * gate), plus {@link #DIRECT} once a relocation has switched the profile to its route.
+     */
+    @SuppressWarnings("unused") // through QUEUED
+    private volatile int queued;
+
+    /** The ordering of a component added by migration ({@link #arriveHeld}); null otherwise. */
+    private volatile ArrivalPen pen;
+
+    /** Where a relocated component's messages go; null unless relocated. */
+    private volatile Endpoint.Remote forwardTo;
+    /** Completes when a relocation has switched the profile to its route; owner or last job. */
+    private CompletableFuture<Void> switched;
+    private ProfileTable relocationRegistry;
 
     private ComponentState lastSnapshot; // owner
     /** When the current logic's last handling ended; for a timed swap's gap. */
@@ -162,17 +181,60 @@ public final class LocalShell implements Shell {
         return gate.enterOrPark(job);
     }
 
+    /**
+     * Before a message for this component is submitted to the scheduler: counts it, or returns
+     * false if the profile has been switched to a relocation's route, which then takes the message
+     * directly ({@link #forwardRoute()}): every message submitted before the switch has been
+     * forwarded by then, so a sender's later messages cannot overtake its earlier ones.
+     */
+    boolean enterQueue() {
+        while (true) {
+            int current = queued;
+            if ((current & DIRECT) != 0) {
+                return false;
+            }
+            if (QUEUED.compareAndSet(this, current, current + 1)) {
+                return true;
+            }
+        }
+    }
+
+    /** A counted job will not run (the scheduler refused it). */
+    void leaveQueue() {
+        int left = (int) QUEUED.getAndAdd(this, -1) - 1;
+        if (left == 0 && forwardTo != null) {
+            trySwitch();
+        }
+    }
+
+    /** The route of a relocated component, once the profile points at it. */
+    io.etherware.core.kernel.RemoteRoute forwardRoute() {
+        return forwardTo.route();
+    }
+
     /** Runs a job that owns the gate, then leaves the gate. */
     void execute(Job job, long nowNs) {
+        boolean counted = job.target() == this;
         try {
-            if (job.target() == this) {
+            if (counted) {
                 handle(job.message(), nowNs);
             } else {
                 ((PendingRequest) job.target()).settle();
             }
         } finally {
+            if (counted) {
+                leftJob(job);
+            }
             gate.leave();
         }
+    }
+
+    /** A counted job ran or was forwarded. */
+    private void leftJob(Job job) {
+        if (job.sequence() >= KernelCore.PEN_OFFSET) {
+            pen.leftPenned();
+        }
+        leaveQueue();
     }
 
     /** See {@link ComponentGate#atBoundary}. */
@@ -183,6 +245,28 @@ public final class LocalShell implements Shell {
     /** Boundary action: from now on, keep arrivals. */
     void hold() {
         gate.hold();
+    }
+
+    /**
+     * Before start, by the thread that adds a migrated component (it owns the gate until start):
+     * keep arrivals from the start on, report the first handling to {@code probe}, and pen the
+     * messages that do not come to {@code arrivalProfile} (see {@link ArrivalPen}).
+     */
+    void arriveHeld(Profile arrivalProfile, LongConsumer probe) {
+        pen = new ArrivalPen(arrivalProfile, gate::release);
+        gate.hold();
+        firstHandlingProbe = probe;
+    }
+
+    /** The ordering of a migrated component, or null. */
+    ArrivalPen pen() {
+        return pen;
+    }
+
+    /** For a job about to be made: whether it is penned (see {@link ArrivalPen#pens}). */
+    boolean pens(Message message) {
+        ArrivalPen arrived = pen;
+        return arrived != null && arrived.pens(message);
     }
 
     /** Ends a hold; the kept jobs are delivered in urgency order, exactly once. */
@@ -247,26 +331,51 @@ public final class LocalShell implements Shell {
     }
 
     /**
-     * Boundary action of a migration: stops the component, points its profile at {@code to} and
-     * forwards the kept messages there, in urgency order, before any message sent after the
-     * switch can reach the route through this node.
+     * Boundary action of a migration: stops the component and forwards the kept messages to
+     * {@code to}, in urgency order. Messages still queued at dispatchers for it, and any
+     * submitted meanwhile, are forwarded in turn when they are taken; once none is left, the
+     * profile is pointed at {@code to} ({@code done} completes) and later messages go there
+     * directly. So no message sent to the profile through this node overtakes an earlier one of
+     * the same sender and urgency.
      */
-    void relocate(ProfileTable registry, Endpoint.Remote to) {
+    void relocate(ProfileTable registry, Endpoint.Remote to, CompletableFuture<Void> done) {
         removed = true;
         stopRunningLogic();
+        relocationRegistry = registry;
+        switched = done;
+        forwardTo = to;
         // New arrivals park at the gate meanwhile, so the kept messages go out first.
-        gate.drainKept(() -> {
-            if (!registry.replace(profile, endpoint, to)) {
-                throw new IllegalStateException("profile '" + name + "' was re-registered during the relocation");
-            }
-        }, kept -> {
+        gate.drainKept(() -> { }, kept -> {
             if (kept.target() == this) {
                 kernel.forward(kept.message(), to.route());
+                if (kept.sequence() >= KernelCore.PEN_OFFSET) {
+                    pen.leftPenned();
+                }
+                QUEUED.getAndAdd(this, -1);
             } else {
                 // The outcome of a request this (now stopped) instance made: it is local.
                 ((PendingRequest) kept.target()).settle();
             }
         });
+        if ((int) QUEUED.getVolatile(this) == 0) {
+            trySwitch();
+        }
+    }
+
+    /** Points the profile at the relocation's route if no job of this component is left. */
+    private void trySwitch() {
+        if (!QUEUED.compareAndSet(this, 0, DIRECT)) {
+            return; // a job came meanwhile: the one that brings the count to 0 switches
+        }
+        CompletableFuture<Void> done = switched;
+        try {
+            if (!relocationRegistry.replace(profile, endpoint, forwardTo)) {
+                throw new IllegalStateException("profile '" + name + "' was re-registered during the relocation");
+            }
+            done.complete(null);
+        } catch (RuntimeException e) {
+            done.completeExceptionally(e);
+        }
     }
 
     /** Boundary action: the component's state now, or null. */
@@ -288,7 +397,12 @@ public final class LocalShell implements Shell {
 
     private void handle(Message message, long nowNs) {
         if (lifecycle != State.RUNNING) {
-            kernel.notRunning(this, message);
+            Endpoint.Remote to = forwardTo;
+            if (to != null) {
+                kernel.forward(message, to.route()); // relocated: in the order taken
+            } else {
+                kernel.notRunning(this, message);
+            }
             return;
         }
         Component current = logic;

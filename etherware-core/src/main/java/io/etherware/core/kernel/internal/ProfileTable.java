@@ -166,7 +166,8 @@ public final class ProfileTable implements ProfileRegistry {
                     + "); each profile names one component");
         }
         if (existing != null) {
-            log.info("profile '{}': the local component displaces the remote route registered for it", profile);
+            // Debug: a migration's arrival does this inside its pause, where a console line costs.
+            log.debug("profile '{}': the local component displaces the remote route registered for it", profile);
         }
         var copy = new HashMap<>(table.exact);
         copy.put(profile, endpoint);

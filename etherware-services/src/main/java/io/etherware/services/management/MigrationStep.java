@@ -1,0 +1,50 @@
+package io.etherware.services.management;
+
+import io.etherware.core.component.ComponentState;
+import io.etherware.core.message.Contents;
+import io.etherware.core.message.Profile;
+import java.util.Objects;
+
+/**
+ * One step of a migration, sent by the source node's management service to the target's,
+ * registered as {@code etherware.migrationStep}; answered with a {@link MigrationStepDone} or a
+ * {@link ManagementFailure}. Not for applications: {@link Management#migrate} starts a migration.
+ *
+ * <p>Immutable; safe to share between threads.
+ *
+ * @param phase         which step
+ * @param target        the exact profile of the component moving
+ * @param fromNode      the source node
+ * @param arrival       the profile under which the target receives the messages the source
+ *                      forwards (unique to this migration), until and after the hand-over
+ * @param className     {@link Phase#PREPARE}: the class to instantiate; otherwise null
+ * @param jarPath       {@link Phase#PREPARE}: the jar to load it from, or null for the class path
+ * @param configuration {@link Phase#PREPARE}: the constructor's argument, or null
+ * @param state         {@link Phase#INSTALL}: the component's state, or null if it has none
+ * @param forwarded     {@link Phase#HANDOVER}: how many messages the source forwarded to the
+ *                      arrival profile before it; the target admits the component once they are in
+ */
+public record MigrationStep(Phase phase, Profile target, String fromNode, Profile arrival, String className, String jarPath,
+                            String configuration, ComponentState state, long forwarded)
+        implements Contents {
+
+    public MigrationStep {
+        Objects.requireNonNull(phase, "phase");
+        Objects.requireNonNull(target, "target");
+        Objects.requireNonNull(fromNode, "fromNode");
+        Objects.requireNonNull(arrival, "arrival");
+    }
+
+    /** The steps, in the order the source sends them. */
+    public enum Phase {
+        /** Load the class and construct the new instance; nothing is registered yet. */
+        PREPARE,
+        /** Restore the state into the prepared instance and register it, held, under the arrival profile. */
+        INSTALL,
+        /**
+         * The held messages have been forwarded ahead of this: register the component under its
+         * profile and release it.
+         */
+        HANDOVER
+    }
+}

@@ -1,0 +1,218 @@
+package io.etherware.services.management.internal;
+
+import io.etherware.core.component.ComponentState;
+import io.etherware.core.component.RequestFailedException;
+import io.etherware.core.component.Shell;
+import io.etherware.core.kernel.Kernel;
+import io.etherware.core.kernel.RemoteRoute;
+import io.etherware.core.message.Message;
+import io.etherware.core.message.Profile;
+import io.etherware.services.management.Management;
+import io.etherware.services.management.ManagementConfig;
+import io.etherware.services.management.ManagementFailure;
+import io.etherware.services.management.ManagementFailure.Reason;
+import io.etherware.services.management.MigrateRequest;
+import io.etherware.services.management.MigrationResult;
+import io.etherware.services.management.MigrationStep;
+import io.etherware.services.management.MigrationStep.Phase;
+import io.etherware.services.management.MigrationStepDone;
+import io.etherware.services.network.NetworkMessenger;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.ExecutionException;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.TimeoutException;
+import java.util.concurrent.atomic.LongAdder;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+/**
+ * The source side of a migration: prepare at the target, hold at a message boundary, snapshot,
+ * install at the target, relocate (forward the held messages), hand over. Any failure before the
+ * relocation releases the hold, so the component resumes here with nothing lost; see the package
+ * documentation of {@code io.etherware.services.management} for the ordering argument.
+ *
+ * <p>Threading: {@link #migrate} blocks for the target's answers, so it runs on the management
+ * service's worker thread, never on a dispatcher; one migration at a time per service.
+ */
+public final class MigrationSource {
+
+    private static final Logger log = LoggerFactory.getLogger(MigrationSource.class);
+    /** The role of the profiles under which migrated components receive forwarded messages. */
+    public static final String ARRIVAL_ROLE = "etherware.arrival";
+    /** Beyond a request's own timeout, for the kernel's timer to fire it. */
+    private static final long GRACE_NS = TimeUnit.SECONDS.toNanos(1);
+
+    private final Kernel kernel;
+    private final ManagementConfig config;
+    private final NetworkMessenger network;
+
+    /**
+     * @param network the node's messenger, for the route to the target and its clock; null on a
+     *                node without one (its migrations are refused)
+     */
+    public MigrationSource(Kernel kernel, ManagementConfig config, NetworkMessenger network) {
+        this.kernel = kernel;
+        this.config = config;
+        this.network = network;
+    }
+
+    /**
+     * Moves the component of {@code shell} as {@code request} asks. Worker thread.
+     *
+     * @param receivedNs when the request reached the management service
+     * @throws LoadFailure if the migration failed; the component then runs here as before
+     */
+    public MigrationResult migrate(Shell shell, MigrateRequest request, long receivedNs) throws LoadFailure {
+        String toNode = request.toNode();
+        Profile profile = shell.profile();
+        if (toNode.equals(kernel.nodeId())) {
+            throw new LoadFailure(Reason.BAD_REQUEST, "toNode='" + toNode + "' is the node that hosts '" + profile
+                    + "' already; name another node");
+        }
+        if (network == null) {
+            throw new LoadFailure(Reason.BAD_REQUEST, "node '" + kernel.nodeId() + "' has no network: install its"
+                    + " management service with ManagementService.install(node, config, networkMessenger)");
+        }
+        String className = request.className() != null ? request.className() : shell.logicType().getName();
+        long stepNs = config.migrationStepTimeoutNs();
+        // Unique to this migration: what the source forwards goes there, apart from the target's
+        // own senders, which keep sending to the profile (through here) until the hand-over.
+        Profile arrival = Profile.of(ARRIVAL_ROLE, "id", kernel.nodeId() + "-" + kernel.newMessageId().sequence());
+
+        // (i) The target loads and constructs while the component still runs here.
+        long prepareStartNs = kernel.clock().nanoTime();
+        step(toNode, new MigrationStep(Phase.PREPARE, profile, kernel.nodeId(), arrival, className, request.jarPath(),
+                request.configuration(), null, 0), stepNs);
+        long quiesceStartNs = kernel.clock().nanoTime();
+
+        // (ii) Quiesce at a message boundary: from now on its messages are kept here, in order.
+        CompletableFuture<Void> held = kernel.holdAsync(profile);
+        try {
+            held.get(stepNs, TimeUnit.NANOSECONDS);
+        } catch (TimeoutException e) {
+            held.thenRun(() -> kernel.release(profile)); // the hold lands later: undo it then
+            throw new LoadFailure(Reason.NOT_RUNNING, "'" + profile + "' did not reach a message boundary within "
+                    + TimeUnit.NANOSECONDS.toMillis(stepNs) + " ms (a long handling?); it runs on at '"
+                    + kernel.nodeId() + "'");
+        } catch (InterruptedException e) {
+            held.thenRun(() -> kernel.release(profile));
+            Thread.currentThread().interrupt();
+            throw new LoadFailure(Reason.SERVICE_FAILED, "interrupted while quiescing '" + profile + "'");
+        } catch (ExecutionException e) {
+            throw new LoadFailure(Reason.NOT_RUNNING, "'" + profile + "' could not be held: " + e.getCause());
+        }
+        long quiescedNs = kernel.clock().nanoTime();
+        long quiescedEpochNs = kernel.clock().epochNanos();
+
+        // (iii) The state travels as XML inside the install step; the target registers it, held.
+        ComponentState state;
+        try {
+            state = kernel.snapshotAsync(profile).get(stepNs, TimeUnit.NANOSECONDS);
+        } catch (ExecutionException | TimeoutException | InterruptedException e) {
+            kernel.release(profile);
+            if (e instanceof InterruptedException) {
+                Thread.currentThread().interrupt();
+            }
+            Throwable cause = e instanceof ExecutionException ? e.getCause() : e;
+            throw new LoadFailure(Reason.ROLLED_BACK, "the snapshot of '" + profile + "' failed (" + cause
+                    + "); it resumed at '" + kernel.nodeId() + "'", cause);
+        }
+        try {
+            step(toNode, new MigrationStep(Phase.INSTALL, profile, kernel.nodeId(), arrival, null, null, null, state, 0),
+                    stepNs);
+        } catch (LoadFailure e) {
+            kernel.release(profile);
+            throw new LoadFailure(e.reason(), e.getMessage() + "; '" + profile + "' resumed at '" + kernel.nodeId()
+                    + "'", e);
+        }
+        long installedNs = kernel.clock().nanoTime();
+
+        // The switch: the profile now routes to the target, the held messages go first (FIFO stream).
+        var route = new ArrivalRoute(network.routeTo(toNode), arrival);
+        try {
+            kernel.relocateAsync(profile, route).get(stepNs, TimeUnit.NANOSECONDS);
+        } catch (ExecutionException | TimeoutException | InterruptedException e) {
+            // Only a concurrent re-registration of the profile gets here; the target gives up its
+            // copy after its hand-over wait.
+            kernel.release(profile);
+            throw new LoadFailure(Reason.SERVICE_FAILED, "relocating '" + profile + "' to '" + toNode + "' failed: "
+                    + e, e);
+        }
+        long relocatedNs = kernel.clock().nanoTime();
+        long heldMessages = route.forwarded.sum();
+
+        // Committed: the component lives at the target. The hand-over releases it there.
+        long firstEpochNs = -1;
+        String implementation = className;
+        try {
+            MigrationStepDone done = step(toNode, new MigrationStep(Phase.HANDOVER, profile, kernel.nodeId(), arrival,
+                    null, null, null, null, route.forwarded.sum()), stepNs + config.firstMessageWaitNs());
+            firstEpochNs = done.firstHandlingEpochNs();
+            implementation = done.implementation();
+        } catch (LoadFailure e) {
+            log.warn("node {}: '{}' moved to '{}', but its hand-over was not confirmed: {}", kernel.nodeId(), profile,
+                    toNode, e.getMessage());
+        }
+        long endNs = kernel.clock().nanoTime();
+        long gapNs = firstEpochNs < 0 ? -1 : network.networkTime().toLocal(toNode, firstEpochNs) - quiescedEpochNs;
+        return new MigrationResult(profile, kernel.nodeId(), toNode, implementation,
+                state == null ? -1 : state.schemaVersion(), heldMessages, quiesceStartNs - prepareStartNs,
+                quiescedNs - quiesceStartNs, installedNs - quiescedNs, relocatedNs - installedNs, gapNs,
+                endNs - receivedNs);
+    }
+
+    /** Sends one step to the target's management service and waits for its answer. */
+    private MigrationStepDone step(String toNode, MigrationStep step, long timeoutNs) throws LoadFailure {
+        var message = new Message(Management.profileOf(toNode), kernel.profile(), kernel.clock().epochNanos(),
+                Management.REQUEST_QOS, step, kernel.newMessageId(), null);
+        Message reply;
+        try {
+            reply = kernel.request(message, timeoutNs).get(timeoutNs + GRACE_NS, TimeUnit.NANOSECONDS);
+        } catch (ExecutionException e) {
+            String why = e.getCause() instanceof RequestFailedException failed ? failed.getMessage()
+                    : String.valueOf(e.getCause());
+            throw new LoadFailure(Reason.TARGET_UNREACHABLE, "node '" + toNode + "' did not answer the "
+                    + step.phase() + " step: " + why, e.getCause());
+        } catch (TimeoutException e) {
+            throw new LoadFailure(Reason.TARGET_UNREACHABLE, "node '" + toNode + "' did not answer the "
+                    + step.phase() + " step within " + TimeUnit.NANOSECONDS.toMillis(timeoutNs) + " ms");
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            throw new LoadFailure(Reason.SERVICE_FAILED, "interrupted during the " + step.phase() + " step");
+        }
+        return switch (reply.contents()) {
+            case MigrationStepDone done -> done;
+            case ManagementFailure failure -> throw new LoadFailure(failure.reason(), "node '" + toNode + "' failed the "
+                    + step.phase() + " step: " + failure.error());
+            default -> throw new LoadFailure(Reason.SERVICE_FAILED, "node '" + toNode + "' answered the "
+                    + step.phase() + " step with " + reply.contents().getClass().getSimpleName());
+        };
+    }
+
+    /**
+     * The route to the target for the moved profile: each message goes to the arrival profile
+     * there (so it is kept with the held ones, ahead of what the target's own senders send after
+     * the hand-over); counts what passes (the held messages, during the relocation).
+     */
+    private static final class ArrivalRoute implements RemoteRoute {
+        private final RemoteRoute to;
+        private final Profile arrival;
+        final LongAdder forwarded = new LongAdder();
+
+        ArrivalRoute(RemoteRoute to, Profile arrival) {
+            this.to = to;
+            this.arrival = arrival;
+        }
+
+        @Override
+        public void deliver(Message message) {
+            to.deliver(message.withProfile(arrival));
+            forwarded.increment();
+        }
+
+        @Override
+        public String toString() {
+            return to.toString();
+        }
+    }
+}

@@ -1,0 +1,202 @@
+package io.etherware.services.management.internal;
+
+import io.etherware.core.component.Component;
+import io.etherware.core.component.Shell;
+import io.etherware.core.kernel.Endpoint;
+import io.etherware.core.kernel.Kernel;
+import io.etherware.core.kernel.ProfileResolutionException;
+import io.etherware.core.message.Profile;
+import io.etherware.services.management.ManagementConfig;
+import io.etherware.services.management.ManagementFailure.Reason;
+import io.etherware.services.management.MigrationStep;
+import io.etherware.services.management.MigrationStep.Phase;
+import io.etherware.services.management.MigrationStepDone;
+import java.net.URLClassLoader;
+import java.util.Map;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.Executor;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicReference;
+import java.util.function.BiConsumer;
+import java.util.function.Supplier;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+/**
+ * The target side of a migration: {@link Phase#PREPARE} loads and constructs the new instance,
+ * {@link Phase#INSTALL} restores the shipped state into it and registers it <em>held</em> under the
+ * migration's arrival profile ({@link Kernel#addHeld}), {@link Phase#HANDOVER} admits it under its
+ * own profile and releases it ({@link Kernel#admit}) once the source has forwarded the messages it
+ * held. A component installed but never handed over within
+ * {@link ManagementConfig#handoverWaitNs()} is removed again: its source has resumed it by then.
+ *
+ * <p>Threading: {@link #prepare} loads code and runs constructors, so it runs on the management
+ * service's worker. {@link #install} runs the component's {@code restore} and {@code onStart}
+ * (which should be quick, as in an upgrade) and {@link #handover} is quick: both run on the
+ * service's dispatcher, because they are on the migration gap's path.
+ */
+public final class MigrationTarget {
+
+    private static final Logger log = LoggerFactory.getLogger(MigrationTarget.class);
+
+    private record Prepared(ImplementationLoader.Loaded loaded, Component instance, long loadNs) {
+    }
+
+    private record Arrived(Profile arrival, ImplementationLoader.Loaded loaded, CompletableFuture<Long> firstHandlingNs) {
+    }
+
+    private final Kernel kernel;
+    private final ManagementConfig config;
+    private final ImplementationLoader loader;
+    private final Executor continuations;
+    /** Told of the jar loader (or null) behind a component that now runs here. */
+    private final BiConsumer<Profile, URLClassLoader> installed;
+    private final Map<Profile, Prepared> prepared = new ConcurrentHashMap<>();
+    private final Map<Profile, Arrived> arrived = new ConcurrentHashMap<>();
+
+    /**
+     * @param continuations where answers that wait are assembled (the service's worker)
+     * @param installed     told when a migrated component is handed over, with its jar loader
+     */
+    public MigrationTarget(Kernel kernel, ManagementConfig config, ImplementationLoader loader, Executor continuations,
+                           BiConsumer<Profile, URLClassLoader> installed) {
+        this.kernel = kernel;
+        this.config = config;
+        this.loader = loader;
+        this.continuations = continuations;
+        this.installed = installed;
+    }
+
+    /** Worker: loads the class and constructs the instance; a later prepare of the profile replaces it. */
+    public MigrationStepDone prepare(MigrationStep step) throws LoadFailure {
+        Profile profile = step.target();
+        if (hostsLocally(profile)) {
+            throw new LoadFailure(Reason.BAD_REQUEST, "node '" + kernel.nodeId() + "' hosts '" + profile
+                    + "' already; a profile names one component");
+        }
+        if (step.className() == null) {
+            throw new LoadFailure(Reason.BAD_REQUEST, "the PREPARE step of '" + profile + "' names no class");
+        }
+        long startNs = kernel.clock().nanoTime();
+        ImplementationLoader.Loaded loaded;
+        try {
+            loaded = loader.load(step.className(), step.jarPath(), step.configuration());
+        } catch (RuntimeException | LinkageError e) {
+            throw new LoadFailure(Reason.CLASS_NOT_LOADABLE, "loading '" + step.className() + "' failed: " + e, e);
+        }
+        Component instance = loaded.factory().get();
+        long loadNs = kernel.clock().nanoTime() - startNs;
+        Prepared previous = prepared.put(profile, new Prepared(loaded, instance, loadNs));
+        if (previous != null) {
+            previous.loaded().discard();
+        }
+        return new MigrationStepDone(Phase.PREPARE, profile, loaded.type().getName(), loadNs, -1);
+    }
+
+    /** Dispatcher: restores the state into the prepared instance and registers it, held. */
+    public MigrationStepDone install(MigrationStep step) throws LoadFailure {
+        Profile profile = step.target();
+        Prepared ready = prepared.remove(profile);
+        if (ready == null) {
+            throw new LoadFailure(Reason.BAD_REQUEST, "'" + profile + "' was not prepared on node '" + kernel.nodeId()
+                    + "'; send PREPARE first");
+        }
+        long startNs = kernel.clock().nanoTime();
+        String type = ready.loaded().type().getName();
+        try {
+            if (step.state() != null) {
+                ready.instance().restore(step.state());
+            }
+        } catch (Throwable e) {
+            ready.loaded().discard();
+            throw new LoadFailure(Reason.ROLLED_BACK, "restore of " + type + " threw " + e, e);
+        }
+        var first = new AtomicReference<>(ready.instance());
+        Supplier<Component> factory = () -> {
+            Component unused = first.getAndSet(null);
+            return unused != null ? unused : ready.loaded().factory().get();
+        };
+        var firstHandlingNs = new CompletableFuture<Long>();
+        Shell shell;
+        try {
+            shell = kernel.addHeld(profile, step.arrival(), factory, firstHandlingNs::complete);
+        } catch (RuntimeException e) {
+            ready.loaded().discard();
+            throw new LoadFailure(Reason.BAD_REQUEST, "'" + profile + "' cannot be registered on node '"
+                    + kernel.nodeId() + "': " + e.getMessage(), e);
+        }
+        if (shell.state() != Shell.State.RUNNING) {
+            kernel.removeAsync(step.arrival());
+            ready.loaded().discard();
+            throw new LoadFailure(Reason.ROLLED_BACK, "onStart of " + type + " threw (see the log); it was removed");
+        }
+        var arrival = new Arrived(step.arrival(), ready.loaded(), firstHandlingNs);
+        arrived.put(profile, arrival);
+        CompletableFuture.delayedExecutor(config.handoverWaitNs(), TimeUnit.NANOSECONDS)
+                .execute(() -> giveUp(profile, arrival));
+        return new MigrationStepDone(Phase.INSTALL, profile, type, kernel.clock().nanoTime() - startNs, -1);
+    }
+
+    /**
+     * Dispatcher: releases the arrived component. The answer completes once its first message
+     * began, or after {@link ManagementConfig#firstMessageWaitNs()} without the gap.
+     */
+    public CompletableFuture<MigrationStepDone> handover(MigrationStep step) throws LoadFailure {
+        Profile profile = step.target();
+        Arrived arrival = arrived.remove(profile);
+        if (arrival == null) {
+            throw new LoadFailure(Reason.BAD_REQUEST, "no migrated '" + profile + "' waits for its hand-over on node '"
+                    + kernel.nodeId() + "' (not installed, or given up after handoverWait)");
+        }
+        try {
+            kernel.admit(arrival.arrival(), step.forwarded());
+        } catch (RuntimeException e) {
+            throw new LoadFailure(Reason.BAD_REQUEST, "'" + profile + "' cannot be admitted on node '"
+                    + kernel.nodeId() + "': " + e.getMessage());
+        }
+        // A forwarded message refused on the way would never come: admit anyway after a step's time.
+        CompletableFuture.delayedExecutor(config.migrationStepTimeoutNs(), TimeUnit.NANOSECONDS)
+                .execute(() -> admitAnyway(profile, arrival.arrival()));
+        String type = arrival.loaded().type().getName();
+        return arrival.firstHandlingNs()
+                .completeOnTimeout(-1L, config.firstMessageWaitNs(), TimeUnit.NANOSECONDS)
+                .thenApplyAsync(firstNs -> {
+                    installed.accept(profile, arrival.loaded().loader());
+                    long epochNs = firstNs < 0 ? -1
+                            : kernel.clock().epochNanos() - (kernel.clock().nanoTime() - firstNs);
+                    return new MigrationStepDone(Phase.HANDOVER, profile, type, -1, epochNs);
+                }, continuations);
+    }
+
+    private void admitAnyway(Profile profile, Profile arrivalProfile) {
+        try {
+            kernel.admit(arrivalProfile, 0); // does nothing if admitted already
+        } catch (RuntimeException e) {
+            log.debug("node {}: '{}' is gone before its late admission: {}", kernel.nodeId(), profile, e.toString());
+        }
+    }
+
+    /** The hand-over did not come in time: the source resumed the component; remove this copy. */
+    private void giveUp(Profile profile, Arrived arrival) {
+        if (!arrived.remove(profile, arrival)) {
+            return;
+        }
+        log.warn("node {}: migrated '{}' was not handed over within {} ms; removing it (its source resumed it)",
+                kernel.nodeId(), profile, TimeUnit.NANOSECONDS.toMillis(config.handoverWaitNs()));
+        try {
+            kernel.removeAsync(arrival.arrival()).whenComplete((done, error) -> arrival.loaded().discard());
+        } catch (RuntimeException e) {
+            log.warn("node {}: removing migrated '{}' failed: {}", kernel.nodeId(), profile, e.toString());
+        }
+    }
+
+    private boolean hostsLocally(Profile profile) {
+        try {
+            return kernel.registry().resolve(profile) instanceof Endpoint.Local local
+                    && local.shell().profile().equals(profile);
+        } catch (ProfileResolutionException e) {
+            return false;
+        }
+    }
+}
