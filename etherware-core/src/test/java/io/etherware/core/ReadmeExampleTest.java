@@ -44,7 +44,8 @@ class ReadmeExampleTest {
                 }
             });
             node.start();
-            assertEquals(new Command(1.0), applied.poll(5, TimeUnit.SECONDS));
+            Command first = applied.poll(5, TimeUnit.SECONDS); // Command[heaterPower=1.0]
+            assertEquals(new Command(1.0), first);
         }
         // README example ends
     }

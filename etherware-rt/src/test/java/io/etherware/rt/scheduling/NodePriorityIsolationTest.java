@@ -109,7 +109,12 @@ class NodePriorityIsolationTest {
         var realtime = new AtomicReference<RealtimeScheduler>();
         Outcome rt = run("rt", () -> recorded(realtime, RealtimeScheduler.withDefaults()), true);
         ThreadGrant high = realtime.get().platformReport().threads().get(CriticalityDeadlinePlacement.HIGH_DISPATCHER);
-        assumeTrue(high.granted().isRealtime(), "under saturation the claim needs SCHED_FIFO: " + high.toLine());
+        String refused = "under saturation the claim needs SCHED_FIFO: " + high.toLine();
+        // A refusal skips on a developer's laptop and fails in CI (CI=true), where root is expected.
+        if ("true".equals(System.getenv("CI"))) {
+            assertTrue(high.granted().isRealtime(), refused);
+        }
+        assumeTrue(high.granted().isRealtime(), refused);
         // The same rule with the three real-time dispatchers on one CPU: HIGH must preempt the LOW
         // dispatcher there rather than run beside it on the other core.
         int cpu = Runtime.getRuntime().availableProcessors() - 1;

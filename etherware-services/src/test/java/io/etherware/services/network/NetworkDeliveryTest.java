@@ -209,6 +209,36 @@ class NetworkDeliveryTest {
     }
 
     @Test
+    void shouldCloseASilentConnectionAtTheHeartbeatTimeoutAndResumeWithNothingLost() throws Exception {
+        var pump = new Pump();
+        var sink = new IdSink();
+        int count = 200;
+        try (var b = TestNode.start("b", TestNode.config());
+             var proxy = new LoopbackProxy(b.address());
+             var a = TestNode.start("a", TestNode.config().peer(proxy.address())
+                     .heartbeatInterval(Duration.ofMillis(100)).heartbeatTimeout(Duration.ofMillis(400)))) {
+            b.node.add(SINK, sink.factory());
+            a.node.add(PUMP, pump.factory());
+            assertTrue(a.net.awaitResolvable(SINK, Duration.ofSeconds(30)));
+            // The path goes silent without closing (a pulled cable, a hung switch): only the
+            // heartbeat can tell, and a must not wait for TCP's own timeouts of many minutes.
+            proxy.stall(true);
+            for (int i = 0; i < count; i++) {
+                a.node.send(PUMP, new Num(i));
+            }
+            Await.until("a closes the silent connection", () -> a.net.stats().closes(CloseReason.HEARTBEAT_TIMEOUT) > 0);
+            assertEquals(0, a.net.stats().closes(CloseReason.PEER_CLOSED), "closed for silence, not by the peer");
+            proxy.stall(false);
+            Await.until("every message arrived or was reported", () -> pump.sent.size() == count
+                    && accounted(pump, sink) == count);
+            assertEquals(0, sink.duplicates.get());
+            b.node.add(Profile.of("echo"), () -> (message, context) -> context.reply(message, message.contents()));
+            assertTrue(a.net.awaitResolvable(Profile.of("echo"), Duration.ofSeconds(30)), "announcements flow again");
+            assertEquals(new Text("back"), a.node.requestBlocking(Profile.of("echo"), new Text("back")).contents());
+        }
+    }
+
+    @Test
     void shouldFailARequestAsUndeliverableWhenThePeerStaysDownPastTheGrace() throws Exception {
         TestNode b = TestNode.start("b", TestNode.config());
         b.node.add(Profile.of("echo"), () -> (message, context) -> context.reply(message, message.contents()));

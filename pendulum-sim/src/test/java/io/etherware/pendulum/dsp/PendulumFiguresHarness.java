@@ -20,7 +20,7 @@ import java.util.stream.Collectors;
  * test suite. Run after {@code ./mvnw -pl pendulum-sim -am verify}:
  *
  * <pre>
- * java -cp pendulum-sim/target/classes:pendulum-sim/target/test-classes:etherware-core/target/classes:\
+ * $JAVA_HOME/bin/java -cp pendulum-sim/target/classes:pendulum-sim/target/test-classes:etherware-core/target/classes:\
  *   ~/.m2/repository/org/slf4j/slf4j-api/2.0.20/slf4j-api-2.0.20.jar \
  *   io.etherware.pendulum.dsp.PendulumFiguresHarness
  * </pre>
@@ -74,8 +74,8 @@ public final class PendulumFiguresHarness {
         List<Complex> ideal = LoopAnalysis.ideal(model, gains, periodNs);
         List<Complex> implemented = LoopAnalysis.asImplemented(model, gains, periodNs, delayNs,
                 VelocityEstimator.DEFAULT_FILTER_TIME_CONSTANT_NS);
-        System.out.printf("  T=%s ms ideal |z| = %s%n  T=%s ms with estimator, %.1f ms delay |z| = %s"
-                + " (slowest decay %.2f /s)%n", periodNs / 1e6, magnitudes(ideal), periodNs / 1e6,
+        System.out.printf("  T=%s ms ideal z = %s, |z| = %s%n  T=%s ms with estimator, %.1f ms delay |z| = %s"
+                + " (slowest decay %.2f /s)%n", periodNs / 1e6, ideal, magnitudes(ideal), periodNs / 1e6,
                 delayNs / 1e6, magnitudes(implemented),
                 LoopAnalysis.slowestDecayRatePerS(implemented, periodNs));
     }

@@ -124,9 +124,9 @@ public final class EnvelopeDeserializer extends StdDeserializer<Message> {
                 String text = text(parser, name);
                 switch (name) {
                     case Wire.CRITICALITY -> criticality = criticality(text);
-                    case Wire.PERIOD_NS -> periodNs = parseLong(name, text);
-                    case Wire.DEADLINE_NS -> deadlineNs = parseLong(name, text);
-                    default -> wcetNs = parseLong(name, text);
+                    case Wire.PERIOD_NS -> periodNs = presentDuration(name, text);
+                    case Wire.DEADLINE_NS -> deadlineNs = presentDuration(name, text);
+                    default -> wcetNs = presentDuration(name, text);
                 }
             }
         }
@@ -141,6 +141,20 @@ public final class EnvelopeDeserializer extends StdDeserializer<Message> {
         } catch (IllegalArgumentException e) {
             throw new MessageFormatException("malformed <qos>: " + e.getMessage(), e);
         }
+    }
+
+    /**
+     * A duration that is present on the wire: 0 means "not specified" in {@link QoS} and the
+     * encoder omits it, so an explicit 0 is a peer's mistake (a deadline of 0 would be missed by
+     * every job), not a way to say "none".
+     */
+    private static long presentDuration(String name, String text) {
+        long valueNs = parseLong(name, text);
+        if (valueNs == 0) {
+            throw new MessageFormatException("<" + name + "> is 0: a duration that is present must be > 0;"
+                    + " omit the element when there is none");
+        }
+        return valueNs;
     }
 
     private static Criticality criticality(String text) {
