@@ -22,8 +22,8 @@ public class ReportingCounter implements Component {
         register(ContentsTypes.shared());
     }
 
-    private long count;
-    private long lastSequence = -1;
+    protected long count;
+    protected long lastSequence = -1;
 
     /** Registers {@link Seq}, {@link Counted} and {@link CounterState} in {@code types}. */
     public static void register(ContentsTypes types) {
@@ -51,6 +51,18 @@ public class ReportingCounter implements Component {
         var counter = (CounterState) state;
         count = counter.count();
         lastSequence = counter.lastSequence();
+    }
+
+    /** Reports the Ticks it gets instead, their sequence as the report's sequence. */
+    public static class TickReporter extends ReportingCounter {
+        @Override
+        public void onMessage(Message message, ComponentContext context) {
+            if (message.contents() instanceof io.etherware.core.message.Tick tick) {
+                count++;
+                lastSequence = tick.sequence();
+                context.send(SINK, new Counted(tick.sequence(), count), message.qos());
+            }
+        }
     }
 
     /** Its restore always throws: a migration to it must roll back. */

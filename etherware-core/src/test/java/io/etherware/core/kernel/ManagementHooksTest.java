@@ -317,6 +317,44 @@ class ManagementHooksTest {
     }
 
     @Test
+    void shouldForwardTheMessagesStillQueuedForARelocatedComponentBeforeSwitchingItsProfile() throws Exception {
+        var forwarded = new CopyOnWriteArrayList<Long>();
+        RemoteRoute route = message -> forwarded.add(message.contentsAs(Num.class).value());
+        var dispatcherBusy = new CountDownLatch(1);
+        var unblock = new CountDownLatch(1);
+        Profile blocker = Profile.of("blocker");
+        try (var node = EtherwareNode.builder().nodeId("relocate-queued").build()) {
+            node.add(TARGET, () -> (message, context) -> { });
+            node.add(blocker, () -> (message, context) -> {
+                dispatcherBusy.countDown();
+                try {
+                    unblock.await(30, TimeUnit.SECONDS); // bounded: the test fails rather than hangs
+                } catch (InterruptedException e) {
+                    Thread.currentThread().interrupt();
+                }
+            });
+            node.start();
+            node.send(blocker, new Text("hold the one dispatcher"));
+            assertTrue(dispatcherBusy.await(30, TimeUnit.SECONDS));
+            node.hold(TARGET);
+            for (long i = 1; i <= 5; i++) {
+                node.send(TARGET, new Num(i)); // queued at the busy dispatcher, not yet kept
+            }
+            CompletableFuture<Void> relocated = node.relocateAsync(TARGET, route);
+            node.send(TARGET, new Num(6)); // behind the queued ones: the profile is not switched yet
+            assertFalse(relocated.isDone(), "the switch waits for the queued messages");
+            assertInstanceOf(Endpoint.Local.class, node.registry().resolve(TARGET));
+            assertEquals(List.of(), forwarded);
+
+            unblock.countDown();
+            relocated.get(30, TimeUnit.SECONDS);
+            node.send(TARGET, new Num(7)); // straight through the route now
+            assertEquals(LongStream.rangeClosed(1, 7).boxed().toList(), forwarded, "in order, each once");
+            assertInstanceOf(Endpoint.Remote.class, node.registry().resolve(TARGET));
+        }
+    }
+
+    @Test
     void shouldSettleAKeptRequestOutcomeLocallyWhenRelocated() throws Exception {
         var forwarded = new CopyOnWriteArrayList<Message>();
         var replyNow = new CountDownLatch(1);

@@ -34,8 +34,10 @@ import org.slf4j.Logger;
 
 /**
  * A node's management service (paper Section VI-C): a component at
- * {@code etherware.management[node=<id>]} that serves {@link UpgradeRequest}s for the node's own
- * components and answers each with an {@link UpgradeResult} or a {@link ManagementFailure}.
+ * {@code etherware.management[node=<id>]} that serves {@link UpgradeRequest}s and
+ * {@link MigrateRequest}s for the node's own components, answering each with an
+ * {@link UpgradeResult}, a {@link MigrationResult} or a {@link ManagementFailure}, and the
+ * {@link MigrationStep}s of migrations coming to this node.
  *
  * <h2>An upgrade, step by step</h2>
  * <ol>
@@ -64,6 +66,14 @@ import org.slf4j.Logger;
  * time. The swap runs where the kernel puts it: on the service's dispatcher if the component is
  * between messages, else on the component's dispatcher right after its current message. Either
  * way the new logic's {@code restore} and {@code onStart} run on a dispatcher and should be quick.
+ *
+ * <h2>A migration</h2>
+ * The steps and the ordering argument are in the package documentation. At the source, the whole
+ * migration runs on the worker, which waits for the target's answers (so a node runs one management
+ * operation at a time). At the target, PREPARE (loading, constructing) runs on the worker; INSTALL
+ * ({@code restore}, {@code onStart}, registration) and HANDOVER run on the service's dispatcher,
+ * because they are on the migration gap's path. Migrating from this node needs the
+ * {@link NetworkMessenger} given to {@link #install(EtherwareNode, ManagementConfig, NetworkMessenger)}.
  */
 public final class ManagementService implements Component {
 

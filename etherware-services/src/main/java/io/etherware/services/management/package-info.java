@@ -1,6 +1,7 @@
 /**
- * Runtime management of a node's components (paper Sections III-B and VI-C): today, upgrading a
- * component's logic while it runs, with nothing lost.
+ * Runtime management of a node's components (paper Sections III-B and VI-C): upgrading a
+ * component's logic while it runs, and migrating a running component to another node, with
+ * nothing lost.
  *
  * <h2>Using it</h2>
  * <pre>{@code
@@ -9,6 +10,11 @@
  * UpgradeResult result = Management.upgrade(node, "plant-1", Profile.parse("controller[car=1]"),
  *         Implementation.fromJar(Path.of("/opt/plant/upgrades/controller-2.jar"), "com.example.ControllerV2")
  *                 .withConfiguration("k1=-12.1,k2=95.3")).join();
+ *
+ * // Migration: both nodes run a NetworkMessenger and a service that knows it; the target accepts
+ * // the source's steps, which are remote requests there.
+ * ManagementService.install(node, ManagementConfig.builder().acceptRemoteRequests(true).build(), network);
+ * MigrationResult moved = Management.migrate(node, "plant-2", Profile.parse("controller[car=1]"), "plant-1").join();
  * }</pre>
  * The new class's contract is on {@link io.etherware.services.management.Implementation}; the
  * service's steps and threads on {@link io.etherware.services.management.ManagementService}.
@@ -27,14 +33,77 @@
  *   <tr><td>{@code etherware.managementFailure}</td>
  *       <td>{@link io.etherware.services.management.ManagementFailure}</td>
  *       <td>answer: refused or failed, with a reason and a message; the old logic serves on</td></tr>
+ *   <tr><td>{@code etherware.migrate}</td><td>{@link io.etherware.services.management.MigrateRequest}</td>
+ *       <td>request: move a component to another node</td></tr>
+ *   <tr><td>{@code etherware.migrationResult}</td><td>{@link io.etherware.services.management.MigrationResult}</td>
+ *       <td>answer: where it went; prepare / quiesce / transfer / relocate / gap / total in ns</td></tr>
+ *   <tr><td>{@code etherware.migrationStep}</td><td>{@link io.etherware.services.management.MigrationStep}</td>
+ *       <td>source to target: PREPARE, INSTALL (with the state), HANDOVER</td></tr>
+ *   <tr><td>{@code etherware.migrationStepDone}</td>
+ *       <td>{@link io.etherware.services.management.MigrationStepDone}</td><td>target to source: step done</td></tr>
  * </table>
- * Migration will add its own request and answer types to the same service.
+ *
+ * <h2>Migration</h2>
+ * A {@link io.etherware.services.management.MigrateRequest} goes to the management service of the
+ * node hosting the component (the source); its worker runs these steps, waiting at most
+ * {@link io.etherware.services.management.ManagementConfig#migrationStepTimeoutNs()} for each
+ * answer of the target:
+ * <ol>
+ *   <li><b>prepare</b>: the target loads the class (class path or allowlisted jar, as for an
+ *       upgrade) and constructs the instance; the component runs on meanwhile.</li>
+ *   <li><b>quiesce</b>: the source holds the component at a message boundary; its messages are
+ *       kept, in order.</li>
+ *   <li><b>transfer</b>: the snapshot travels as XML in the INSTALL step; the target restores it
+ *       and registers the component <em>held</em> under its profile and under an <em>arrival</em>
+ *       profile unique to this migration ({@code etherware.arrival[id=...]},
+ *       {@link io.etherware.core.kernel.Kernel#addHeld}). The target now announces the profile.</li>
+ *   <li><b>relocate</b>: the source stops the component and forwards, to the arrival profile, the
+ *       kept messages, then those still queued for it at its dispatchers, then switches its
+ *       registry to the route ({@link io.etherware.core.kernel.Kernel#relocateAsync}).</li>
+ *   <li><b>hand-over</b>: the HANDOVER step says how many messages were forwarded; once they are in,
+ *       the target releases the component ({@link io.etherware.core.kernel.Kernel#admit}). Its
+ *       answer carries the start of the first message handled there, for the gap.</li>
+ * </ol>
+ * Any failure before the relocation (target unreachable or dead, a step unanswered in time, class
+ * missing, {@code restore} or {@code onStart} throwing at the target, the snapshot throwing)
+ * releases the hold: the component resumes at the source with every kept message, and the requester
+ * gets a {@link io.etherware.services.management.ManagementFailure}. A target that installed a
+ * component but gets no hand-over within
+ * {@link io.etherware.services.management.ManagementConfig#handoverWaitNs()} removes it again.
+ *
+ * <h3>Why nothing is lost, duplicated or reordered</h3>
+ * Every message for the component is in exactly one place: handled at the source, kept there,
+ * queued there, forwarded (acknowledged streams: no loss or duplicate while both nodes live),
+ * or kept at the target. The source switches its registry only when no message for the component is
+ * queued there (a counter per component, set atomically with the switch), so a sender at the source
+ * whose later message goes straight to the target has had every earlier one forwarded first, into
+ * the same FIFO stream. At the target, messages sent directly to the profile after the install are
+ * <em>penned</em>: they sort behind the forwarded ones of the same urgency, which were sent earlier
+ * (senders at the target reached the component through the source until the install); and the
+ * release waits for the forwarded count, because the HANDOVER, sent at HIGH criticality, may
+ * overtake less critical forwarded messages in a backlogged queue. Order is per sender and
+ * urgency, as everywhere in the kernel. Known limit: a third node that sent to the source just
+ * before learning of the move (its message crossing the source's announcement) may see that message
+ * handled after one it then sent to the target directly; closing it needs per-sender sequence
+ * numbers. A message forwarded after its stream broke for good is reported undeliverable to its
+ * sender, as any message on that link.
+ *
+ * <h3>Ticks</h3>
+ * A Notifier subscription stays with the Notifier it was made with: Ticks are messages to the
+ * component's profile, and that node's registry routes the profile to wherever the component
+ * lives, so Ticks keep coming after a move with no action by anyone (tested). This was chosen over
+ * re-subscribing at the target because it cannot lose or double a Tick during the move: a second
+ * subscription would overlap or leave a hole. The price: after a move, Ticks cross the network
+ * (their lateness grows by the link's latency) and stop if the Notifier's node goes down; a
+ * component that wants local Ticks subscribes at its new node's Notifier in {@code onStart} and
+ * unsubscribes the old one.
  *
  * <h2>Guards</h2>
  * Code comes only from the node's class path or from jars whose canonical path (symbolic links
  * resolved) lies inside an allowlisted directory. A request whose message id was made on another
  * node is refused unless {@link io.etherware.services.management.ManagementConfig#acceptRemoteRequests()};
- * links are not authenticated yet, so enable it only on a trusted network.
+ * links are not authenticated yet, so enable it only on a trusted network. The target of a migration
+ * must accept remote requests: the source's steps are remote requests there.
  *
  * <p>Thread-safety of each type is stated on the type.
  */

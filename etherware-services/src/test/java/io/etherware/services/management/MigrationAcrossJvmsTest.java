@@ -65,6 +65,14 @@ class MigrationAcrossJvmsTest {
         return process;
     }
 
+    /** This JVM's node, with the counter; it accepts the steps of a migration back from the peer. */
+    private static MigrationNode sourceWithCounter() {
+        var a = MigrationNode.start("jvm-a", MigrationNode.config().migrationStepTimeout(STEP_TIMEOUT)
+                .handoverWait(STEP_TIMEOUT.multipliedBy(2)).build());
+        a.node.add(COUNTER, ReportingCounter::new);
+        return a;
+    }
+
     private static void stop(Process process) throws InterruptedException {
         try {
             process.getOutputStream().close();
@@ -78,10 +86,7 @@ class MigrationAcrossJvmsTest {
 
     @Test
     void shouldMoveAStatefulComponentToAnotherJvmAndBackWithNothingLostUnderAStream() throws Exception {
-        ManagementConfig config = MigrationNode.config().migrationStepTimeout(STEP_TIMEOUT)
-                .handoverWait(STEP_TIMEOUT.multipliedBy(2)).build();
-        try (var a = MigrationNode.start("jvm-a", config)) {
-            a.node.add(COUNTER, ReportingCounter::new);
+        try (var a = sourceWithCounter()) {
             Process b = startPeer(a, "jvm-b");
             try {
                 var stream = new SeqStream(a.node, COUNTER, STREAM_PERIOD_NS);
@@ -112,10 +117,7 @@ class MigrationAcrossJvmsTest {
 
     @Test
     void shouldResumeAtTheSourceWithNothingLostWhenTheTargetJvmIsKilledDuringTheMigration() throws Exception {
-        ManagementConfig config = MigrationNode.config().migrationStepTimeout(STEP_TIMEOUT)
-                .handoverWait(STEP_TIMEOUT.multipliedBy(2)).build();
-        try (var a = MigrationNode.start("jvm-a", config)) {
-            a.node.add(COUNTER, ReportingCounter::new);
+        try (var a = sourceWithCounter()) {
             Process b = startPeer(a, "jvm-b");
             try {
                 var stream = new SeqStream(a.node, COUNTER, STREAM_PERIOD_NS);

@@ -5,7 +5,13 @@ import static org.junit.jupiter.api.Assertions.assertInstanceOf;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
+import example.counter.Counted;
 import example.counter.ReportingCounter;
+import io.etherware.core.message.Criticality;
+import io.etherware.rt.platform.ThreadPolicy;
+import io.etherware.services.notifier.Notifier;
+import io.etherware.services.notifier.NotifierConfig;
+import io.etherware.services.notifier.Subscription;
 import io.etherware.core.kernel.Endpoint;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageId;
@@ -135,6 +141,38 @@ class MigrationTest {
             assertTrue(b.node.shells().stream().noneMatch(shell -> shell.profile().equals(COUNTER)),
                     "B's copy was removed");
             assertInstanceOf(Endpoint.Local.class, a.node.registry().resolve(COUNTER), "A still hosts it");
+        }
+    }
+
+    @Test
+    void shouldKeepDeliveringTheTicksOfTheSourcesNotifierAfterTheComponentMoves() throws Exception {
+        Profile ticker = Profile.parse("ticker[test=migration]");
+        try (var a = MigrationNode.start("mig-a", MigrationNode.config().build());
+             var b = MigrationNode.start("mig-b", MigrationNode.config().build(), a.address())) {
+            var reports = new CopyOnWriteArrayList<Message>();
+            a.node.add(ReportingCounter.SINK, () -> (message, context) -> reports.add(message));
+            a.node.add(ticker, ReportingCounter.TickReporter::new);
+            Notifier notifier = Notifier.install(a.node,
+                    NotifierConfig.defaults().withThreadPolicy(ThreadPolicy.NON_REALTIME));
+            notifier.subscribe(Subscription.periodic("ticker", ticker, Criticality.MIDDLE,
+                    TimeUnit.MILLISECONDS.toNanos(2)));
+            a.awaitManagementOf("mig-b");
+            Await.until("ticks at A", () -> reports.size() >= 20);
+
+            Management.migrate(a.node, "mig-a", ticker, "mig-b").get(30, TimeUnit.SECONDS);
+            Await.until("ticks at B", () -> reports.stream().filter(r -> r.messageId().nodeId().equals("mig-b"))
+                    .count() >= 20);
+
+            var handled = reports.stream().map(r -> (Counted) r.contents())
+                    .sorted(java.util.Comparator.comparingLong(Counted::count)).toList();
+            for (int i = 0; i < handled.size(); i++) {
+                assertEquals(i + 1, handled.get(i).count(), "the count continues at B: " + handled);
+                if (i > 0) {
+                    assertTrue(handled.get(i).sequence() > handled.get(i - 1).sequence(),
+                            "each Tick once, in order: " + handled);
+                }
+            }
+            assertEquals(0, notifier.stats("ticker").orElseThrow().skippedUndeliverable(), "the profile always resolved");
         }
     }
 

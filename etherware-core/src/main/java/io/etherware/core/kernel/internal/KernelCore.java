@@ -186,8 +186,9 @@ public final class KernelCore implements Kernel, JobRunner {
             shell.leaveQueue();
             discard(job);
         }
-        if (shell.isArrival(message)) {
-            shell.arrived(); // after the submission: the admission's hand-over queues behind it
+        ArrivalPen pen = shell.pen();
+        if (pen != null && pen.isArrival(message)) {
+            pen.arrived(); // after the submission: the admission's hand-over queues behind it
         }
     }
 
@@ -453,7 +454,11 @@ public final class KernelCore implements Kernel, JobRunner {
         if (!(endpoint instanceof Endpoint.Local local) || local.shell().profile().equals(arrival)) {
             throw new IllegalArgumentException("no migrated component arrived as '" + arrival + "'");
         }
-        ((LocalShell) local.shell()).admitAfter(forwardedCount);
+        ArrivalPen pen = ((LocalShell) local.shell()).pen();
+        if (pen == null) {
+            throw new IllegalArgumentException("'" + local.shell().profile() + "' did not arrive by migration");
+        }
+        pen.admitAfter(forwardedCount);
     }
 
     @Override

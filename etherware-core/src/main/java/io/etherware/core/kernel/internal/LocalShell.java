@@ -88,18 +88,8 @@ public final class LocalShell implements Shell {
     @SuppressWarnings("unused") // through QUEUED
     private volatile int queued;
 
-    /**
-     * Added by migration ({@link #arriveHeld}): the profile its source forwards to. Until
-     * {@link #admitted}, and then while a penned job remains, other messages for it are
-     * <em>penned</em>: their jobs sort after every forwarded one (of the same urgency), because
-     * whatever comes through the source was sent before what comes here directly.
-     */
-    private volatile Profile arrival;
-    private volatile boolean admitted;
-    private final AtomicBoolean admission = new AtomicBoolean();
-    private final java.util.concurrent.atomic.AtomicLong arrivals = new java.util.concurrent.atomic.AtomicLong();
-    private volatile long admitAt = Long.MAX_VALUE;
-    private final java.util.concurrent.atomic.AtomicInteger penned = new java.util.concurrent.atomic.AtomicInteger();
+    /** The ordering of a component added by migration ({@link #arriveHeld}); null otherwise. */
+    private volatile ArrivalPen pen;
 
     /** Where a relocated component's messages go; null unless relocated. */
     private volatile Endpoint.Remote forwardTo;
@@ -242,7 +232,7 @@ public final class LocalShell implements Shell {
     /** A counted job ran or was forwarded. */
     private void leftJob(Job job) {
         if (job.sequence() >= KernelCore.PEN_OFFSET) {
-            penned.decrementAndGet();
+            pen.leftPenned();
         }
         leaveQueue();
     }
@@ -260,70 +250,23 @@ public final class LocalShell implements Shell {
     /**
      * Before start, by the thread that adds a migrated component (it owns the gate until start):
      * keep arrivals from the start on, report the first handling to {@code probe}, and pen the
-     * messages that do not come to {@code arrivalProfile}.
+     * messages that do not come to {@code arrivalProfile} (see {@link ArrivalPen}).
      */
     void arriveHeld(Profile arrivalProfile, LongConsumer probe) {
-        arrival = arrivalProfile;
+        pen = new ArrivalPen(arrivalProfile, gate::release);
         gate.hold();
         firstHandlingProbe = probe;
     }
 
-    /**
-     * The migrated component may run once {@code forwardedCount} messages to its arrival profile
-     * have been submitted (the source forwarded that many before it asked for the admission; they
-     * may come after the request, which can overtake them on the way). Then it is released, the
-     * forwarded ones first; penning ends once the penned jobs are done.
-     */
-    void admitAfter(long forwardedCount) {
-        admitAt = forwardedCount;
-        if (arrivals.get() >= forwardedCount) {
-            admitOnce();
-        }
+    /** The ordering of a migrated component, or null. */
+    ArrivalPen pen() {
+        return pen;
     }
 
-    /** After a job for the arrival profile was submitted: admits if it was the last one awaited. */
-    void arrived() {
-        if (arrivals.incrementAndGet() >= admitAt) {
-            admitOnce();
-        }
-    }
-
-    private void admitOnce() {
-        if (admission.compareAndSet(false, true)) {
-            admitted = true;
-            gate.release();
-        }
-    }
-
-    /** Whether {@code message} comes to the arrival profile of a migrated component. */
-    boolean isArrival(Message message) {
-        Profile forwarded = arrival;
-        return forwarded != null && message.profile().equals(forwarded);
-    }
-
-    /**
-     * For a job about to be made: whether it is penned (it then counts until it runs). Only a
-     * migrated component pens, and only messages not forwarded by its source.
-     */
+    /** For a job about to be made: whether it is penned (see {@link ArrivalPen#pens}). */
     boolean pens(Message message) {
-        Profile forwarded = arrival;
-        if (forwarded == null || message.profile().equals(forwarded)) {
-            return false;
-        }
-        if (!admitted) {
-            penned.incrementAndGet();
-            return true;
-        }
-        // Admitted: keep penning while penned jobs wait, so a sender's later message stays behind.
-        while (true) {
-            int now = penned.get();
-            if (now == 0) {
-                return false;
-            }
-            if (penned.compareAndSet(now, now + 1)) {
-                return true;
-            }
-        }
+        ArrivalPen arrived = pen;
+        return arrived != null && arrived.pens(message);
     }
 
     /** Ends a hold; the kept jobs are delivered in urgency order, exactly once. */
@@ -406,7 +349,7 @@ public final class LocalShell implements Shell {
             if (kept.target() == this) {
                 kernel.forward(kept.message(), to.route());
                 if (kept.sequence() >= KernelCore.PEN_OFFSET) {
-                    penned.decrementAndGet();
+                    pen.leftPenned();
                 }
                 QUEUED.getAndAdd(this, -1);
             } else {
