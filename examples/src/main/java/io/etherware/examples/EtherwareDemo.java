@@ -1,7 +1,10 @@
 package io.etherware.examples;
 
+import io.etherware.examples.migrate.ControlNodeCommand;
+import io.etherware.examples.migrate.MigrateCommand;
 import io.etherware.examples.stress.StressCommand;
 import io.etherware.examples.upgrade.UpgradeCommand;
+import java.util.Map;
 import picocli.CommandLine;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
@@ -23,7 +26,8 @@ import picocli.CommandLine.Spec;
  */
 @Command(name = "etherware-demo", mixinStandardHelpOptions = true, versionProvider = EtherwareDemo.Version.class,
         description = "The Etherware paper's experiments on a simulated inverted pendulum.",
-        subcommands = {StressCommand.class, UpgradeCommand.class, CommandLine.HelpCommand.class},
+        subcommands = {StressCommand.class, UpgradeCommand.class, MigrateCommand.class, ControlNodeCommand.class,
+            CommandLine.HelpCommand.class},
         footer = {"", "Plots and CSVs go to target/scenarios/<scenario>/ unless --out says otherwise."})
 public final class EtherwareDemo implements Runnable {
 
@@ -44,7 +48,9 @@ public final class EtherwareDemo implements Runnable {
     @Override
     public void run() {
         throw new ParameterException(spec.commandLine(), "Name a scenario: " + String.join(", ",
-                spec.subcommands().keySet().stream().filter(name -> !name.equals("help")).toList()));
+                spec.subcommands().entrySet().stream()
+                .filter(e -> !e.getKey().equals("help") && !e.getValue().getCommandSpec().usageMessage().hidden())
+                .map(Map.Entry::getKey).toList()));
     }
 
     /** The version from the jar's manifest, or "development build" when run from classes. */

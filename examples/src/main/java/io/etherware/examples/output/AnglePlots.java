@@ -175,15 +175,20 @@ public final class AnglePlots {
         }
     }
 
-    /** A vertical line at each upgrade event; the legend names the first. */
+    /** A vertical line at each upgrade or migration request; the legend names the first. */
     private static void markUpgrades(XYChart chart, ScenarioRun run, double heightRad) {
         int index = 0;
         for (ScenarioEvent event : run.events()) {
-            if (event.kind() != ScenarioEvent.Kind.UPGRADE) {
+            String what = switch (event.kind()) {
+                case UPGRADE -> "upgrade";
+                case MIGRATION -> "migration";
+                default -> null;
+            };
+            if (what == null) {
                 continue;
             }
             double atS = run.secondsOf(event.timeNs());
-            String name = index == 0 ? "upgrade (management request)" : "upgrade " + index;
+            String name = index == 0 ? what + " (management request)" : what + " " + index;
             XYSeries series = chart.addSeries(name, new double[] {atS, atS}, new double[] {-heightRad, heightRad});
             series.setXYSeriesRenderStyle(XYSeries.XYSeriesRenderStyle.Line);
             series.setMarker(SeriesMarkers.NONE);

@@ -46,13 +46,21 @@ public final class PendulumRig implements AutoCloseable {
      */
     public PendulumRig(String nodeId, Supplier<? extends Scheduler> scheduler, PendulumState initial, GainSet gains,
             ControlListener listener) {
+        this(nodeId, scheduler, initial);
+        node.add(PendulumController.DEFAULT_PROFILE,
+                PendulumController.factory(ControllerConfig.defaults(), gains, listener));
+    }
+
+    /**
+     * A rig whose node hosts only the {@link DspProxy}: the controller runs elsewhere (paper
+     * Fig. 10, where the controller is on another node than the DSPProxy).
+     */
+    public PendulumRig(String nodeId, Supplier<? extends Scheduler> scheduler, PendulumState initial) {
         Objects.requireNonNull(scheduler, "scheduler");
         board = new DspBoard(DspBoardConfig.defaults(), PARAMETERS, initial, link.boardEnd());
         DspClient client = new DspClient(link.hostEnd(), clock, DspClient.Config.defaults());
         node = EtherwareNode.builder().nodeId(nodeId).scheduler(scheduler).clock(clock).build();
         node.add(DspProxy.DEFAULT_PROFILE, DspProxy.factory(client));
-        node.add(PendulumController.DEFAULT_PROFILE,
-                PendulumController.factory(ControllerConfig.defaults(), gains, listener));
     }
 
     /** The node; add the scenario's other components before {@link #start}. */
@@ -79,6 +87,16 @@ public final class PendulumRig implements AutoCloseable {
      */
     public long start(SimThreads threads) {
         node.start();
+        return startBoard(threads);
+    }
+
+    /**
+     * Starts only the board, for a scenario that started the node itself earlier (to connect a
+     * controller on another node before the pendulum starts to fall).
+     *
+     * @return the board's start time, the run's time origin
+     */
+    public long startBoard(SimThreads threads) {
         long originNs = clock.nanoTime();
         board.startRealTime(clock, threads.fifo("dsp-board", SimThreads.BOARD_PRIORITY));
         return originNs;

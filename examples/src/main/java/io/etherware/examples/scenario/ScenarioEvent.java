@@ -4,7 +4,7 @@ import java.util.Objects;
 
 /**
  * Something that happened during a scenario run and is marked in its CSV and plots: a stress
- * activation starting or ending, the pendulum falling, an upgrade. Immutable.
+ * activation starting or ending, the pendulum falling, an upgrade, a migration. Immutable.
  *
  * @param timeNs when, on the node's monotonic clock
  * @param kind what kind of event, for styling and counting
@@ -22,6 +22,8 @@ public record ScenarioEvent(long timeNs, Kind kind, String label) {
         FELL,
         /** A management request replaced a component's logic (or tried to). */
         UPGRADE,
+        /** A management request moved a component to another node (or tried to). */
+        MIGRATION,
         /** Anything else worth a mark. */
         NOTE
     }

@@ -1,0 +1,54 @@
+package io.etherware.examples.migrate;
+
+import java.nio.file.Path;
+import java.util.Objects;
+
+/**
+ * Settings of the migration scenario (paper Section VI-C2). Immutable; validated at construction,
+ * messages name the field, the value and the allowed range.
+ *
+ * @param durationNs       length of the run
+ * @param periodNs         the controller's Tick period (the paper: 15 ms)
+ * @param migrateAtNs      when, after the board starts, the requester asks node 2 to move the
+ *                         controller to node 1
+ * @param initialTheta2Rad where the pendulum starts, off upright
+ * @param out              where the CSV, plots and table go
+ */
+public record MigrateConfig(long durationNs, long periodNs, long migrateAtNs, double initialTheta2Rad, Path out) {
+
+    /** A minute: 40 s on node 2, then 20 s on node 1. */
+    public static final long DEFAULT_DURATION_NS = 60_000_000_000L;
+    /** The paper's migration time: t = 40 s. */
+    public static final long DEFAULT_MIGRATE_AT_NS = 40_000_000_000L;
+    /** The node with the DSP board and the DSPProxy (the paper's node 1): the migration's target. */
+    public static final String PLANT_NODE = "node-1";
+    /** The node the controller starts on (the paper's node 2), in a JVM of its own. */
+    public static final String CONTROL_NODE = "node-2";
+
+    public MigrateConfig {
+        Objects.requireNonNull(out, "out");
+        if (durationNs < 4_000_000_000L || durationNs > 3_600_000_000_000L) {
+            throw new IllegalArgumentException("durationNs=" + durationNs + ": must be within 4 s .. 1 h");
+        }
+        if (periodNs < 1_000_000L || periodNs > 1_000_000_000L) {
+            throw new IllegalArgumentException("periodNs=" + periodNs + ": must be within 1 ms .. 1 s");
+        }
+        if (migrateAtNs < 2_000_000_000L || migrateAtNs > durationNs - 2_000_000_000L) {
+            throw new IllegalArgumentException("migrateAtNs=" + migrateAtNs
+                    + ": must leave at least 2 s on each node, within durationNs=" + durationNs);
+        }
+        if (!(Math.abs(initialTheta2Rad) < 0.3)) {
+            throw new IllegalArgumentException("initialTheta2Rad=" + initialTheta2Rad + ": must be within ±0.3 rad");
+        }
+    }
+
+    /** The defaults, or the migration two thirds into a run shorter than a minute. */
+    public static MigrateConfig of(long durationNs, long periodNs, Path out) {
+        return new MigrateConfig(durationNs, periodNs, Math.min(DEFAULT_MIGRATE_AT_NS, durationNs * 2 / 3), 0.02, out);
+    }
+
+    /** A copy with the migration at another time. */
+    public MigrateConfig withMigrateAtNs(long nanos) {
+        return new MigrateConfig(durationNs, periodNs, nanos, initialTheta2Rad, out);
+    }
+}

@@ -1,0 +1,65 @@
+package io.etherware.examples.migrate;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertNotNull;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.etherware.examples.scenario.Progress;
+import io.etherware.examples.scenario.RunSummary;
+import io.etherware.examples.scenario.ScenarioRun;
+import io.etherware.pendulum.components.ControlCycle;
+import io.etherware.pendulum.components.PendulumController;
+import io.etherware.services.management.MigrationResult;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import org.junit.jupiter.api.Test;
+
+/**
+ * The migration scenario end to end with two real JVMs, shortened to 12 s with the migration at
+ * 8 s: the controller starts on node 2 (a second JVM on this class path), balances the pendulum
+ * through the DSPProxy on node 1 over TCP, and moves to node 1 while it balances.
+ */
+class MigrateScenarioIT {
+
+    private static final long RUN_NS = 12_000_000_000L;
+    private static final long MIGRATE_AT_NS = 8_000_000_000L;
+
+    @Test
+    void shouldMoveTheControllerToTheDspProxysNodeWithoutLettingThePendulumGo() throws Exception {
+        MigrateConfig config = MigrateConfig.of(RUN_NS, 15_000_000L, Path.of("target", "scenarios-it", "migrate"))
+                .withMigrateAtNs(MIGRATE_AT_NS);
+        MigrateOutcome outcome = new MigrateScenario(config, new Progress("migrate", RUN_NS / 1e9, System.out, false))
+                .run();
+        MigrateReport.write(config, outcome);
+        MigrateReport.migrationLines(outcome).forEach(System.out::println);
+        ScenarioRun run = outcome.run();
+        RunSummary whole = RunSummary.of(run);
+        System.out.println(whole);
+
+        assertTrue(outcome.migrated(), () -> "the migration failed: " + outcome.failure()
+                + "; node 2's log: " + config.out().resolve("node-2.log"));
+        MigrationResult result = outcome.result();
+        assertEquals(PendulumController.DEFAULT_PROFILE, result.target());
+        assertEquals(MigrateConfig.CONTROL_NODE, result.fromNode());
+        assertEquals(MigrateConfig.PLANT_NODE, result.toNode());
+        // The controller ends on node 1: its profile resolves to a component of node 1 there.
+        assertEquals(MigrateConfig.PLANT_NODE, outcome.finalHost());
+        // Upright throughout, on node 2 and on node 1 alike.
+        assertFalse(whole.fell(), () -> "the pendulum fell at " + whole.fellAtS() + " s");
+        assertTrue(whole.maxAbsTheta2Rad() < 0.2, () -> "max |θ2| " + whole.maxAbsTheta2Rad());
+        // Both instances controlled: node 2 before, node 1 after, with cycles from both.
+        MigrateOutcome.HandOver handOver = outcome.handOver();
+        assertNotNull(handOver, "node 1's instance commanded no torque");
+        long beforeCycles = run.cycles().stream().filter(c -> c.cycle() <= handOver.lastRemoteCycle()
+                && c.outcome() == ControlCycle.Outcome.COMMANDED).count();
+        assertTrue(beforeCycles > 0.8 * MIGRATE_AT_NS / run.periodNs(), () -> "node 2 commanded only " + beforeCycles
+                + " cycles before the migration");
+        // The migration gap is below one control period, and no control cycle was lost to it.
+        assertTrue(result.gapNs() >= 0 && result.gapNs() < run.periodNs(),
+                () -> "migration gap " + result.gapNs() + " ns, control period " + run.periodNs() + " ns");
+        assertEquals(0, handOver.lostCycles(), () -> "cycles without a command across the migration: "
+                + handOver.lostCycles());
+        assertTrue(Files.size(config.out().resolve("migrate.csv")) > 0, "the CSV was written");
+    }
+}
