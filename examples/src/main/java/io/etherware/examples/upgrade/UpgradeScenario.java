@@ -2,6 +2,7 @@ package io.etherware.examples.upgrade;
 
 import io.etherware.core.message.Criticality;
 import io.etherware.core.time.NodeClock;
+import io.etherware.examples.scenario.ConfiguredController;
 import io.etherware.examples.scenario.ControlListeners;
 import io.etherware.examples.scenario.CycleLog;
 import io.etherware.examples.scenario.PendulumRig;
@@ -115,7 +116,7 @@ public final class UpgradeScenario {
                 requestNs = clock.nanoTime();
                 events.add(requestNs, ScenarioEvent.Kind.UPGRADE, "upgrade request");
                 Implementation v2 = Implementation.fromJar(config.jar().toAbsolutePath(), UpgradeConfig.V2_CLASS)
-                        .withConfiguration("listener=" + listenerName);
+                        .withConfiguration(ConfiguredController.configuration(listenerName));
                 try {
                     result = Management.upgrade(rig.node(), rig.node().nodeId(), PendulumController.DEFAULT_PROFILE,
                             v2, Duration.ofNanos(ANSWER_TIMEOUT_NS)).get(ANSWER_TIMEOUT_NS, TimeUnit.NANOSECONDS);

@@ -1,13 +1,8 @@
 package io.etherware.examples.upgrade.plugin;
 
-import io.etherware.core.component.Component;
-import io.etherware.core.component.ComponentContext;
-import io.etherware.core.component.ComponentState;
-import io.etherware.core.message.Message;
+import io.etherware.examples.scenario.ConfiguredController;
 import io.etherware.examples.scenario.ControlListeners;
 import io.etherware.pendulum.components.ControlListener;
-import io.etherware.pendulum.components.ControllerConfig;
-import io.etherware.pendulum.components.PendulumController;
 import io.etherware.pendulum.control.GainSet;
 import io.etherware.pendulum.plant.PendulumParameters;
 
@@ -24,9 +19,7 @@ import io.etherware.pendulum.plant.PendulumParameters;
  * {@link #restore}, so the loop continues where V1 left it. Called by the kernel one message at a
  * time, like any component.
  */
-public final class TightController implements Component {
-
-    private final PendulumController controller;
+public final class TightController extends ConfiguredController {
 
     /** V2 without a listener. */
     public TightController() {
@@ -35,43 +28,6 @@ public final class TightController implements Component {
 
     /** V2 telling the listener named in {@code configuration} ({@code listener=<name>}) about each cycle. */
     public TightController(String configuration) {
-        ControlListener listener = ControlListeners.named(listenerName(configuration));
-        controller = new PendulumController(ControllerConfig.defaults(), GainSet.v2Tight(PendulumParameters.defaults()),
-                listener);
-    }
-
-    private static String listenerName(String configuration) {
-        for (String entry : configuration.split(",")) {
-            String[] pair = entry.trim().split("=", 2);
-            if (pair.length == 2 && pair[0].trim().equals("listener")) {
-                return pair[1].trim();
-            }
-        }
-        return null;
-    }
-
-    @Override
-    public void onStart(ComponentContext context) {
-        controller.onStart(context);
-    }
-
-    @Override
-    public void onMessage(Message message, ComponentContext context) {
-        controller.onMessage(message, context);
-    }
-
-    @Override
-    public void onStop() {
-        controller.onStop();
-    }
-
-    @Override
-    public ComponentState snapshot() {
-        return controller.snapshot();
-    }
-
-    @Override
-    public void restore(ComponentState state) {
-        controller.restore(state);
+        super(GainSet.v2Tight(PendulumParameters.defaults()), configuration);
     }
 }
