@@ -1,5 +1,6 @@
 package io.etherware.examples;
 
+import io.etherware.examples.bench.BenchCommand;
 import io.etherware.examples.stress.StressCommand;
 import io.etherware.examples.upgrade.UpgradeCommand;
 import picocli.CommandLine;
@@ -23,8 +24,9 @@ import picocli.CommandLine.Spec;
  */
 @Command(name = "etherware-demo", mixinStandardHelpOptions = true, versionProvider = EtherwareDemo.Version.class,
         description = "The Etherware paper's experiments on a simulated inverted pendulum.",
-        subcommands = {StressCommand.class, UpgradeCommand.class, CommandLine.HelpCommand.class},
-        footer = {"", "Plots and CSVs go to target/scenarios/<scenario>/ unless --out says otherwise."})
+        subcommands = {StressCommand.class, UpgradeCommand.class, BenchCommand.class, CommandLine.HelpCommand.class},
+        footer = {"", "Plots and CSVs go to target/scenarios/<scenario>/ unless --out says otherwise;"
+                + " the bench writes target/bench/report.md and report.json."})
 public final class EtherwareDemo implements Runnable {
 
     @Spec
