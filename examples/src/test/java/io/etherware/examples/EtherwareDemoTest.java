@@ -102,4 +102,10 @@ class EtherwareDemoTest {
         assertEquals(2, execute("bench", "--quick", "--duration-s", "20"));
         assertTrue(err.toString().contains("--duration-s=20.0 with --quick"), err.toString());
     }
+
+    @Test
+    void shouldNameTheSectionWhenItIsOutOfRange() {
+        assertEquals(2, execute("bench", "--quick", "--section", "2,9"));
+        assertTrue(err.toString().contains("--section=9 is out of range"), err.toString());
+    }
 }

@@ -5,6 +5,7 @@ import java.time.Instant;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
+import java.util.Set;
 
 /**
  * The whole bench in one JVM: sections 1 to 7 in order, each row Etherware-RT beside its
@@ -20,16 +21,20 @@ public final class Bench {
     static final String GC_SECTION = "7. collector pauses";
 
     private final BenchConfig config;
+    private final Set<Integer> sections;
     private final String settings;
     private final PrintWriter progress;
 
     /**
      * @param config   what to measure and for how long
+     * @param sections the sections to run, 1 to 6 (section 7, the collector, is always reported);
+     *                 empty for all
      * @param settings the settings as the user gave them, for the report's header
      * @param progress where to say which section is running (standard error)
      */
-    public Bench(BenchConfig config, String settings, PrintWriter progress) {
+    public Bench(BenchConfig config, Set<Integer> sections, String settings, PrintWriter progress) {
         this.config = config;
+        this.sections = Set.copyOf(sections);
         this.settings = settings;
         this.progress = progress;
     }
@@ -41,12 +46,12 @@ public final class Bench {
         MachineInfo machine = MachineInfo.probe(config.priority());
         var rows = new ArrayList<BenchRow>();
         try (CollectorPauses pauses = CollectorPauses.start()) {
-            section(PeriodicLateness.SECTION, rows, () -> new PeriodicLateness(config).measure());
-            section(DispatchLatency.SECTION, rows, () -> new DispatchLatency(config).measure());
-            section(Throughput.SECTION, rows, () -> new Throughput(config).measure());
-            section(CodecCost.SECTION, rows, () -> new CodecCost(config).measure());
-            section(Loopback.SECTION, rows, () -> new Loopback(config).measure());
-            section(GapMeasurement.SECTION, rows, () -> ReconfigurationGaps.defaults().measure(config));
+            section(1, PeriodicLateness.SECTION, rows, () -> new PeriodicLateness(config).measure());
+            section(2, DispatchLatency.SECTION, rows, () -> new DispatchLatency(config).measure());
+            section(3, Throughput.SECTION, rows, () -> new Throughput(config).measure());
+            section(4, CodecCost.SECTION, rows, () -> new CodecCost(config).measure());
+            section(5, Loopback.SECTION, rows, () -> new Loopback(config).measure());
+            section(6, GapMeasurement.SECTION, rows, () -> ReconfigurationGaps.defaults().measure(config));
             CollectorPauses.Summary summary = pauses.summary();
             rows.add(BenchRow.value("gc.pauses", GC_SECTION, String.join(", ", machine.collectors()),
                     "whole run", summary.maxPauseMs(), "ms max", String.format(Locale.ROOT,
@@ -60,7 +65,10 @@ public final class Bench {
         List<BenchRow> measure() throws Exception;
     }
 
-    private void section(String name, List<BenchRow> rows, Section section) throws Exception {
+    private void section(int number, String name, List<BenchRow> rows, Section section) throws Exception {
+        if (!sections.isEmpty() && !sections.contains(number)) {
+            return;
+        }
         long startNs = System.nanoTime();
         progress.printf(Locale.ROOT, "bench: %s ...%n", name);
         progress.flush();

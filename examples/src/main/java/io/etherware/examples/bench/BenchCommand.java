@@ -2,7 +2,11 @@ package io.etherware.examples.bench;
 
 import java.io.PrintWriter;
 import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Set;
 import java.util.concurrent.Callable;
+import java.util.stream.Collectors;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
 import picocli.CommandLine.Option;
@@ -37,6 +41,11 @@ public final class BenchCommand implements Callable<Integer> {
     @Option(names = "--quick", description = "About 30 s in all: checks the harness, not the figures.")
     private boolean quick;
 
+    @Option(names = "--section", paramLabel = "N", split = ",",
+            description = "Run only these sections, 1 to 6, e.g. --section 2,5 (default: all; the collector's"
+                    + " pauses, section 7, are always reported).")
+    private List<Integer> onlySections = new ArrayList<>();
+
     @Option(names = "--out", paramLabel = "DIR", defaultValue = "target/bench",
             description = "Directory for report.md and report.json (default: ${DEFAULT-VALUE}).")
     private Path out;
@@ -44,9 +53,10 @@ public final class BenchCommand implements Callable<Integer> {
     @Override
     public Integer call() throws Exception {
         BenchConfig config = config();
-        String settings = quick ? "--quick" : "--duration-s " + (durationS == null ? BenchConfig.DEFAULT_PERIODIC_S
-                : durationS);
-        BenchReport report = new Bench(config, settings, spec.commandLine().getErr()).run();
+        String settings = (quick ? "--quick" : "--duration-s " + (durationS == null ? BenchConfig.DEFAULT_PERIODIC_S
+                : durationS)) + (onlySections.isEmpty() ? "" : " --section " + onlySections.stream()
+                .map(String::valueOf).collect(Collectors.joining(",")));
+        BenchReport report = new Bench(config, Set.copyOf(onlySections), settings, spec.commandLine().getErr()).run();
         report.write(out);
         PrintWriter stdout = spec.commandLine().getOut();
         stdout.print(report.markdown());
@@ -59,6 +69,11 @@ public final class BenchCommand implements Callable<Integer> {
     private BenchConfig config() {
         if (quick && durationS != null) {
             throw new ParameterException(spec.commandLine(), "--duration-s=" + durationS + " with --quick: choose one");
+        }
+        for (int section : onlySections) {
+            if (section < 1 || section > 6) {
+                throw new ParameterException(spec.commandLine(), "--section=" + section + " is out of range: use 1 to 6");
+            }
         }
         if (durationS != null && !(durationS >= 1 && durationS <= 3600)) {
             throw new ParameterException(spec.commandLine(), "--duration-s=" + durationS
