@@ -108,4 +108,10 @@ class EtherwareDemoTest {
         assertEquals(2, execute("bench", "--quick", "--section", "2,9"));
         assertTrue(err.toString().contains("--section=9 is out of range"), err.toString());
     }
+
+    @Test
+    void shouldNameTheRepetitionsWhenTooFew() {
+        assertEquals(2, execute("bench", "--repetitions", "2"));
+        assertTrue(err.toString().contains("--repetitions=2 is out of range"), err.toString());
+    }
 }

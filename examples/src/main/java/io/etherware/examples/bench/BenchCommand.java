@@ -41,6 +41,10 @@ public final class BenchCommand implements Callable<Integer> {
     @Option(names = "--quick", description = "About 30 s in all: checks the harness, not the figures.")
     private boolean quick;
 
+    @Option(names = "--repetitions", paramLabel = "N",
+            description = "Upgrades measured for the upgrade gap (default: 200; 20 with --quick; at least 5).")
+    private Integer repetitions;
+
     @Option(names = "--section", paramLabel = "N", split = ",",
             description = "Run only these sections, 1 to 6, e.g. --section 2,5 (default: all; the collector's"
                     + " pauses, section 7, are always reported).")
@@ -54,7 +58,7 @@ public final class BenchCommand implements Callable<Integer> {
     public Integer call() throws Exception {
         BenchConfig config = config();
         String settings = (quick ? "--quick" : "--duration-s " + (durationS == null ? BenchConfig.DEFAULT_PERIODIC_S
-                : durationS)) + (onlySections.isEmpty() ? "" : " --section " + onlySections.stream()
+                : durationS)) + (repetitions == null ? "" : " --repetitions " + repetitions) + (onlySections.isEmpty() ? "" : " --section " + onlySections.stream()
                 .map(String::valueOf).collect(Collectors.joining(",")));
         BenchReport report = new Bench(config, Set.copyOf(onlySections), settings, spec.commandLine().getErr()).run();
         report.write(out);
@@ -79,7 +83,12 @@ public final class BenchCommand implements Callable<Integer> {
             throw new ParameterException(spec.commandLine(), "--duration-s=" + durationS
                     + " is out of range: use 1 to 3600 seconds");
         }
-        return quick ? BenchConfig.quick() : BenchConfig.full(durationS == null ? BenchConfig.DEFAULT_PERIODIC_S
-                : durationS);
+        if (repetitions != null && (repetitions < 5 || repetitions > 100_000)) {
+            throw new ParameterException(spec.commandLine(), "--repetitions=" + repetitions
+                    + " is out of range: use 5 to 100000");
+        }
+        BenchConfig config = quick ? BenchConfig.quick() : BenchConfig.full(durationS == null
+                ? BenchConfig.DEFAULT_PERIODIC_S : durationS);
+        return repetitions == null ? config : config.withUpgradeRepetitions(repetitions);
     }
 }

@@ -60,6 +60,12 @@ public record BenchConfig(long periodicNs, long dispatchNs, long throughputNs, l
                 DEFAULT_PRIORITY, false);
     }
 
+    /** This configuration with another number of upgrades in section 6. */
+    public BenchConfig withUpgradeRepetitions(int repetitions) {
+        return new BenchConfig(periodicNs, dispatchNs, throughputNs, warmupNs, codecOps, roundTrips, repetitions,
+                priority, realtimeBursts);
+    }
+
     private static long secondsToNs(double seconds) {
         if (!(seconds >= 0.1)) {
             throw new IllegalArgumentException("periodicS=" + seconds + ": must be >= 0.1 s");
