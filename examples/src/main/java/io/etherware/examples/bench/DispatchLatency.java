@@ -10,7 +10,9 @@ import io.etherware.core.scheduler.Scheduler;
 import io.etherware.rt.platform.CpuSet;
 import io.etherware.rt.platform.Platform;
 import io.etherware.rt.platform.ThreadPolicy;
+import io.etherware.rt.scheduling.DispatcherSpec;
 import io.etherware.rt.scheduling.RealtimeScheduler;
+import io.etherware.rt.scheduling.RealtimeSchedulerConfig;
 import io.etherware.rt.scheduling.ThreadSchedulingRule;
 import java.time.Duration;
 import java.util.ArrayList;
@@ -27,8 +29,9 @@ import org.HdrHistogram.Recorder;
 /**
  * Section 2: HIGH dispatch latency at 1 kHz, {@code EtherwareNode.send} to the first line of the
  * component's {@code onMessage}, idle and under a LOW flood, for the original {@link FifoScheduler},
- * the {@link RealtimeScheduler} (Table II, Algorithm 1) and a bare {@link ArrayBlockingQueue}
- * hand-off between two threads at the HIGH dispatcher's priority (the floor Java offers).
+ * the {@link RealtimeScheduler} (Table II, Algorithm 1), the same with its HIGH dispatcher and the
+ * sender pinned to one CPU, and a bare {@link ArrayBlockingQueue} hand-off between two threads at
+ * the HIGH dispatcher's priority (the floor Java offers).
  *
  * <p>The HIGH sender stands for the Notifier: a thread at SCHED_FIFO {@value #SENDER_PRIORITY}
  * (when granted) sleeping to absolute 1 ms release times. The load is open-loop: the sender never
@@ -70,9 +73,21 @@ final class DispatchLatency {
 
     List<BenchRow> measure() throws InterruptedException {
         var rows = new ArrayList<BenchRow>();
+        // Pinned: the HIGH dispatcher and the sender share the last CPU, so the hand-off is a local
+        // wake-up instead of an inter-processor interrupt to another (possibly idle) vCPU.
+        CpuSet lastCpu = CpuSet.of(Runtime.getRuntime().availableProcessors() - 1);
+        Supplier<Scheduler> pinned = () -> new RealtimeScheduler(RealtimeSchedulerConfig.builder().name("pinned")
+                .threadSchedulingRule(new ThreadSchedulingRule(List.of(DispatcherSpec.nonRealtime(),
+                        DispatcherSpec.fifo(ThreadSchedulingRule.HIGH_PRIORITY).on(lastCpu),
+                        DispatcherSpec.fifo(ThreadSchedulingRule.MIDDLE_PRIORITY),
+                        DispatcherSpec.fifo(ThreadSchedulingRule.LOW_PRIORITY)))).build());
         List<Target> targets = List.of(
-                new Target("fifo", "FifoScheduler (original Etherware)", () -> new NodeTarget(FifoScheduler::new)),
-                new Target("rt", "RealtimeScheduler (Table II)", () -> new NodeTarget(RealtimeScheduler::withDefaults)),
+                new Target("fifo", "FifoScheduler (original Etherware)",
+                        () -> new NodeTarget(FifoScheduler::new, CpuSet.inherit())),
+                new Target("rt", "RealtimeScheduler (Table II)",
+                        () -> new NodeTarget(RealtimeScheduler::withDefaults, CpuSet.inherit())),
+                new Target("rt-pinned", "RealtimeScheduler (Table II), HIGH dispatcher and sender on CPU "
+                        + (Runtime.getRuntime().availableProcessors() - 1), () -> new NodeTarget(pinned, lastCpu)),
                 new Target("queue", "ArrayBlockingQueue hand-off (floor)", QueueTarget::new));
         for (Target target : targets) {
             try (Bench bench = target.factory().get()) {
@@ -99,7 +114,12 @@ final class DispatchLatency {
     private abstract static class Bench implements AutoCloseable {
         private final Recorder highLatencyNs = Histograms.recorderNs();
         private final Semaphore lowBacklog = new Semaphore(LOW_BACKLOG);
+        private final CpuSet senderCpus;
         volatile String senderPolicy = "";
+
+        Bench(CpuSet senderCpus) {
+            this.senderCpus = senderCpus;
+        }
 
         abstract void sendHigh(long nowNs);
 
@@ -158,7 +178,7 @@ final class DispatchLatency {
         }
 
         private void sendPeriodically(long durationNs) {
-            var grant = Platform.current().configureCurrentThread(ThreadPolicy.fifo(SENDER_PRIORITY), CpuSet.inherit());
+            var grant = Platform.current().configureCurrentThread(ThreadPolicy.fifo(SENDER_PRIORITY), senderCpus);
             senderPolicy = grant.granted().toString();
             long count = durationNs / BenchConfig.PERIOD_NS;
             long nextNs = System.nanoTime() + BenchConfig.PERIOD_NS;
@@ -177,7 +197,8 @@ final class DispatchLatency {
     private static final class NodeTarget extends Bench {
         private final EtherwareNode node;
 
-        NodeTarget(Supplier<Scheduler> scheduler) {
+        NodeTarget(Supplier<Scheduler> scheduler, CpuSet senderCpus) {
+            super(senderCpus);
             node = EtherwareNode.builder().nodeId("bench-dispatch").scheduler(scheduler)
                     .drainTimeout(Duration.ofSeconds(2)).build();
             node.add(HIGH_TARGET, () -> (message, context) ->
@@ -215,6 +236,7 @@ final class DispatchLatency {
         private volatile String highPolicy = "";
 
         QueueTarget() {
+            super(CpuSet.inherit());
             highThread = Thread.ofPlatform().name("bench-queue-high").daemon(true).start(() -> {
                 highPolicy = Platform.current().configureCurrentThread(
                         ThreadPolicy.fifo(ThreadSchedulingRule.HIGH_PRIORITY), CpuSet.inherit()).granted().toString();
