@@ -35,7 +35,7 @@ class EtherwareDemoTest {
     @Test
     void shouldAskForAScenarioWhenNoneIsNamed() {
         assertEquals(2, execute());
-        assertTrue(err.toString().contains("Name a scenario: stress, upgrade"), err.toString());
+        assertTrue(err.toString().contains("Name a scenario: stress, upgrade, bench"), err.toString());
     }
 
     @Test
@@ -89,5 +89,29 @@ class EtherwareDemoTest {
     void shouldRefuseANonNumericDuration() {
         assertEquals(2, execute("stress", "--duration", "ten"));
         assertTrue(err.toString().contains("--duration") && err.toString().contains("ten"), err.toString());
+    }
+
+    @Test
+    void shouldNameTheBenchDurationWhenItIsOutOfRange() {
+        assertEquals(2, execute("bench", "--duration-s", "0"));
+        assertTrue(err.toString().contains("--duration-s=0.0 is out of range"), err.toString());
+    }
+
+    @Test
+    void shouldRefuseQuickWithADuration() {
+        assertEquals(2, execute("bench", "--quick", "--duration-s", "20"));
+        assertTrue(err.toString().contains("--duration-s=20.0 with --quick"), err.toString());
+    }
+
+    @Test
+    void shouldNameTheSectionWhenItIsOutOfRange() {
+        assertEquals(2, execute("bench", "--quick", "--section", "2,9"));
+        assertTrue(err.toString().contains("--section=9 is out of range"), err.toString());
+    }
+
+    @Test
+    void shouldNameTheRepetitionsWhenTooFew() {
+        assertEquals(2, execute("bench", "--repetitions", "2"));
+        assertTrue(err.toString().contains("--repetitions=2 is out of range"), err.toString());
     }
 }

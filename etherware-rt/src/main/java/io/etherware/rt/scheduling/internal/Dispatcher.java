@@ -29,8 +29,8 @@ import org.slf4j.LoggerFactory;
  * parked; the thread moves the intake into its private heap before every take. No submitter ever
  * holds a lock the dispatcher needs, so a low-priority submitter preempted mid-submit cannot delay
  * a high-priority dispatcher (no lock-holder preemption on the hand-off path). Measured with
- * {@code DispatchLatencyHarness} on a loaded 2-vCPU VM against a PriorityBlockingQueue per
- * dispatcher: the same p99 (about 25 µs) under the LOW flood, but a p99.9 of 0.1-0.5 ms instead
+ * the dispatch-latency harness (now section 2 of {@code etherware-demo bench}) on a loaded 2-vCPU
+ * VM against a PriorityBlockingQueue per dispatcher: the same p99 (about 25 µs) under the LOW flood, but a p99.9 of 0.1-0.5 ms instead
  * of 0.2-18 ms.
  *
  * <p>Priority inheritance: when a job taken here is parked because its component is running on a

@@ -150,7 +150,9 @@ final class RouteTable {
             } catch (IllegalArgumentException e) {
                 if (!route.shadowLogged) {
                     route.shadowLogged = true;
-                    log.warn("profile '{}' announced by node '{}' is registered on this node already; this node's"
+                    // A local component always wins over a route, by design; it happens on every
+                    // migration (the target registers before the source withdraws), so not a warning.
+                    log.info("profile '{}' announced by node '{}' is registered on this node already; this node's"
                             + " registration wins ({})", route.profile, first.nodeId, e.getMessage());
                 }
             }

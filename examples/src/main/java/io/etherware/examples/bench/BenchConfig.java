@@ -1,0 +1,75 @@
+package io.etherware.examples.bench;
+
+import java.util.concurrent.TimeUnit;
+
+/**
+ * How long and how much each section of the bench measures. Immutable; validated when built.
+ * Defaults: {@link #full(double)}; {@link #quick()} is the about-30-seconds smoke run.
+ *
+ * @param periodicNs          each periodic-lateness row (section 1)
+ * @param dispatchNs          each dispatch-latency row (section 2)
+ * @param throughputNs        each throughput row (section 3)
+ * @param warmupNs            warm-up before each timed row of sections 1-3
+ * @param codecOps            timed calls per codec row (section 4)
+ * @param roundTrips          round trips per loopback row (section 5)
+ * @param upgradeRepetitions  upgrades measured (section 6)
+ * @param priority            SCHED_FIFO priority of the periodic threads (Notifier, executor, cyclictest)
+ * @param realtimeBursts      whether saturating bursts (the upgrade's message chain, a few ms each) may
+ *                            run on SCHED_FIFO dispatchers; false in the smoke run, which runs in the test suite
+ */
+public record BenchConfig(long periodicNs, long dispatchNs, long throughputNs, long warmupNs, int codecOps,
+                          int roundTrips, int upgradeRepetitions, int priority, boolean realtimeBursts) {
+
+    /** The real-time period of sections 1 and 2: 1 kHz. */
+    public static final long PERIOD_NS = TimeUnit.MILLISECONDS.toNanos(1);
+    /** Default length of a periodic row in the full run, seconds. */
+    public static final double DEFAULT_PERIODIC_S = 60;
+    /** Default SCHED_FIFO priority: the Notifier's (one above the HIGH dispatcher's 80). */
+    public static final int DEFAULT_PRIORITY = 81;
+
+    /** Validates every field. */
+    public BenchConfig {
+        requireAtLeast("periodicNs", periodicNs, TimeUnit.MILLISECONDS.toNanos(100));
+        requireAtLeast("dispatchNs", dispatchNs, TimeUnit.MILLISECONDS.toNanos(100));
+        requireAtLeast("throughputNs", throughputNs, TimeUnit.MILLISECONDS.toNanos(100));
+        requireAtLeast("warmupNs", warmupNs, 0);
+        requireAtLeast("codecOps", codecOps, 100);
+        requireAtLeast("roundTrips", roundTrips, 100);
+        requireAtLeast("upgradeRepetitions", upgradeRepetitions, 5);
+        if (priority < 1 || priority > 98) {
+            throw new IllegalArgumentException("priority=" + priority + ": must be 1..98 (SCHED_FIFO; 99 is the kernel's)");
+        }
+    }
+
+    private static void requireAtLeast(String field, long value, long min) {
+        if (value < min) {
+            throw new IllegalArgumentException(field + "=" + value + ": must be >= " + min);
+        }
+    }
+
+    /** The full run: {@code periodicS} per periodic row, 10 s per dispatch row, 3 s per throughput row. */
+    public static BenchConfig full(double periodicS) {
+        return new BenchConfig(secondsToNs(periodicS), TimeUnit.SECONDS.toNanos(10), TimeUnit.SECONDS.toNanos(3),
+                TimeUnit.SECONDS.toNanos(2), 200_000, 30_000, 200, DEFAULT_PRIORITY, true);
+    }
+
+    /** The smoke run: about 30 s in all, enough samples for every row to be sane, not for its figures. */
+    public static BenchConfig quick() {
+        return new BenchConfig(TimeUnit.MILLISECONDS.toNanos(1500), TimeUnit.MILLISECONDS.toNanos(1000),
+                TimeUnit.MILLISECONDS.toNanos(500), TimeUnit.MILLISECONDS.toNanos(300), 5_000, 2_000, 20,
+                DEFAULT_PRIORITY, false);
+    }
+
+    /** This configuration with another number of upgrades in section 6. */
+    public BenchConfig withUpgradeRepetitions(int repetitions) {
+        return new BenchConfig(periodicNs, dispatchNs, throughputNs, warmupNs, codecOps, roundTrips, repetitions,
+                priority, realtimeBursts);
+    }
+
+    private static long secondsToNs(double seconds) {
+        if (!(seconds >= 0.1)) {
+            throw new IllegalArgumentException("periodicS=" + seconds + ": must be >= 0.1 s");
+        }
+        return Math.round(seconds * 1e9);
+    }
+}

@@ -1,0 +1,162 @@
+package io.etherware.examples.bench;
+
+import io.etherware.core.codec.MessageCodec;
+import io.etherware.core.kernel.EtherwareNode;
+import io.etherware.core.message.Criticality;
+import io.etherware.core.message.Message;
+import io.etherware.core.message.MessageId;
+import io.etherware.core.message.Profile;
+import io.etherware.core.message.QoS;
+import io.etherware.core.message.Text;
+import io.etherware.services.network.NetworkConfig;
+import io.etherware.services.network.NetworkMessenger;
+import java.io.BufferedInputStream;
+import java.io.BufferedOutputStream;
+import java.io.DataInputStream;
+import java.io.DataOutputStream;
+import java.io.IOException;
+import java.net.InetAddress;
+import java.net.ServerSocket;
+import java.net.Socket;
+import java.time.Duration;
+import java.util.List;
+import java.util.Locale;
+import java.util.concurrent.TimeUnit;
+import org.HdrHistogram.Histogram;
+
+/**
+ * Section 5: a request and its reply over loopback TCP through two NetworkMessengers (outside
+ * node a to an echo component on node b and back: XML encoded and decoded at both ends, each
+ * node's kernel and dispatcher in the path), beside a raw TCP ping-pong of the same bytes (4-byte
+ * length frames, TCP_NODELAY). Round trips are back to back (closed loop), so the percentiles are
+ * of round trips as they came; the two phases alternate over rounds so that a change of load on a
+ * shared machine hits both alike. From the services module's loopback harness. Runs on the
+ * caller's thread.
+ */
+final class Loopback {
+
+    static final String SECTION = "5. loopback round trip";
+    private static final int ROUNDS = 3;
+    private static final Profile ECHO = Profile.of("bench-echo");
+    private static final Text PAYLOAD = new Text("ping");
+    private static final double ROUND_TRIP_AIM_US = 40;
+
+    @FunctionalInterface
+    private interface RoundTrip {
+        void run() throws Exception;
+    }
+
+    private final BenchConfig config;
+
+    Loopback(BenchConfig config) {
+        this.config = config;
+    }
+
+    List<BenchRow> measure() throws Exception {
+        Histogram messengerNs = Histograms.latencyNs();
+        Histogram rawNs = Histograms.latencyNs();
+        var codec = new MessageCodec();
+        try (var b = EtherwareNode.builder().nodeId("bench-b").build().start();
+             var bNet = NetworkMessenger.start(b, NetworkConfig.builder().listen("127.0.0.1", 0).build());
+             var a = EtherwareNode.builder().nodeId("bench-a").build().start();
+             var aNet = NetworkMessenger.start(a, NetworkConfig.builder().peer(bNet.localAddress()).build())) {
+            b.add(ECHO, () -> (message, context) -> context.reply(message, message.contents()));
+            if (!aNet.awaitResolvable(ECHO, Duration.ofSeconds(30))) {
+                throw new IllegalStateException("b's echo was never announced to a");
+            }
+            QoS qos = QoS.of(Criticality.HIGH);
+            long timeoutNs = TimeUnit.SECONDS.toNanos(10);
+            RoundTrip throughMessengers = () -> a.requestBlocking(ECHO, PAYLOAD, qos, timeoutNs);
+            // The same bytes as the messengers carry: a request and its reply as encoded on the wire.
+            Message request = new Message(ECHO, a.profile(), a.clock().epochNanos(), qos, PAYLOAD,
+                    new MessageId("bench-a", 123_456), null);
+            Message reply = new Message(a.profile(), ECHO, b.clock().epochNanos(), qos, PAYLOAD,
+                    new MessageId("bench-b", 654_321), request.messageId());
+            byte[] requestXml = codec.encode(request);
+            byte[] replyXml = codec.encode(reply);
+            try (var pingPong = new RawPingPong(requestXml, replyXml)) {
+                int warmup = Math.max(1_000, config.roundTrips() / 3);
+                repeat(warmup, throughMessengers, null);
+                repeat(warmup, pingPong::roundTrip, null);
+                for (int round = 0; round < ROUNDS; round++) {
+                    repeat(config.roundTrips() / ROUNDS, pingPong::roundTrip, rawNs);
+                    repeat(config.roundTrips() / ROUNDS, throughMessengers, messengerNs);
+                }
+            }
+            String bytes = String.format(Locale.ROOT, "request %d B, reply %d B of XML", requestXml.length,
+                    replyXml.length);
+            BenchRow messenger = BenchRow.latency("loopback.messenger", SECTION, "NetworkMessenger request/reply",
+                    "idle, back to back", "us", Percentiles.of(messengerNs), bytes + "; encode+decode at both ends");
+            return List.of(messenger.judged("p50 <= 40 us", messenger.p50() <= ROUND_TRIP_AIM_US),
+                    BenchRow.latency("loopback.raw", SECTION, "raw TCP ping-pong, same bytes", "idle, back to back",
+                            "us", Percentiles.of(rawNs), bytes + "; no codec"));
+        }
+    }
+
+    private static void repeat(int count, RoundTrip roundTrip, Histogram histogramNs) throws Exception {
+        for (int i = 0; i < count; i++) {
+            long startNs = System.nanoTime();
+            roundTrip.run();
+            if (histogramNs != null) {
+                histogramNs.recordValue(Histograms.clampNs(System.nanoTime() - startNs));
+            }
+        }
+    }
+
+    /** A client and an echo thread over loopback TCP with TCP_NODELAY, 4-byte length frames. */
+    private static final class RawPingPong implements AutoCloseable {
+        private final ServerSocket server;
+        private final Socket client;
+        private final DataOutputStream out;
+        private final DataInputStream in;
+        private final byte[] requestXml;
+        private final Thread echo;
+
+        RawPingPong(byte[] requestXml, byte[] replyXml) throws IOException {
+            this.requestXml = requestXml;
+            server = new ServerSocket(0, 1, InetAddress.getLoopbackAddress());
+            client = new Socket(InetAddress.getLoopbackAddress(), server.getLocalPort());
+            client.setTcpNoDelay(true);
+            Socket accepted = server.accept();
+            accepted.setTcpNoDelay(true);
+            out = new DataOutputStream(new BufferedOutputStream(client.getOutputStream()));
+            in = new DataInputStream(new BufferedInputStream(client.getInputStream()));
+            echo = Thread.ofPlatform().daemon().name("bench-raw-echo").start(() -> serve(accepted, replyXml));
+        }
+
+        private static void serve(Socket socket, byte[] replyXml) {
+            try (socket;
+                 var input = new DataInputStream(new BufferedInputStream(socket.getInputStream()));
+                 var output = new DataOutputStream(new BufferedOutputStream(socket.getOutputStream()))) {
+                while (true) {
+                    byte[] frame = new byte[input.readInt()];
+                    input.readFully(frame);
+                    output.writeInt(replyXml.length);
+                    output.write(replyXml);
+                    output.flush();
+                }
+            } catch (IOException e) {
+                // Closed by the client: the bench is done.
+            }
+        }
+
+        void roundTrip() throws IOException {
+            out.writeInt(requestXml.length);
+            out.write(requestXml);
+            out.flush();
+            byte[] answer = new byte[in.readInt()];
+            in.readFully(answer);
+        }
+
+        @Override
+        public void close() throws IOException {
+            client.close();
+            server.close();
+            try {
+                echo.join(1_000);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+        }
+    }
+}

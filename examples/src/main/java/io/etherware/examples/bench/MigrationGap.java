@@ -1,0 +1,99 @@
+package io.etherware.examples.bench;
+
+import io.etherware.core.kernel.EtherwareNode;
+import io.etherware.core.message.ContentsTypes;
+import io.etherware.core.message.Criticality;
+import io.etherware.core.message.Profile;
+import io.etherware.core.message.QoS;
+import io.etherware.examples.bench.UpgradeGap.Chain;
+import io.etherware.examples.bench.UpgradeGap.ChainState;
+import io.etherware.examples.bench.UpgradeGap.ChainV1;
+import io.etherware.examples.bench.UpgradeGap.Seq;
+import io.etherware.services.management.Management;
+import io.etherware.services.management.ManagementConfig;
+import io.etherware.services.management.ManagementService;
+import io.etherware.services.management.MigrationResult;
+import io.etherware.services.network.NetworkConfig;
+import io.etherware.services.network.NetworkMessenger;
+import java.net.InetSocketAddress;
+import java.time.Duration;
+import java.util.Locale;
+import java.util.concurrent.TimeUnit;
+
+/**
+ * The migration gap: the upgrade gap's chain (one message always in flight to the component
+ * itself) migrated back and forth between two nodes in this JVM, joined by their
+ * NetworkMessengers over TCP on loopback, so the state and the held messages cross a real socket
+ * as XML. The gap is the management services': the end of the last message handled at the source
+ * to the start of the first handled at the target. From the services module's migration gap
+ * harness. Both nodes run the kernel's FIFO dispatcher: the gap is the migration protocol's, two
+ * steps across the network, not a scheduler's.
+ */
+final class MigrationGap implements GapMeasurement {
+
+    private static final Profile LOOP = Profile.parse("bench-loop[bench=migration]");
+    private static final QoS LOOP_QOS = QoS.of(Criticality.MIDDLE);
+    private static final int MAX_WARMUP = 30;
+    private static final Duration CONNECT_TIMEOUT = Duration.ofSeconds(30);
+
+    @Override
+    public String id() {
+        return "migration";
+    }
+
+    @Override
+    public BenchRow measure(BenchConfig config, int repetitions) throws Exception {
+        ContentsTypes.shared().register("bench.seq", Seq.class).register("bench.chainState", ChainState.class);
+        var gapsNs = new long[repetitions];
+        int measured = 0;
+        long held = 0;
+        int warmup = Math.min(MAX_WARMUP, repetitions);
+        Chain.breaks.set(0);
+        ManagementConfig management = ManagementConfig.builder().acceptRemoteRequests(true).build();
+        try (var a = EtherwareNode.builder().nodeId("bench-mig-a").build().start();
+                var aNet = NetworkMessenger.start(a, loopback().build());
+                var b = EtherwareNode.builder().nodeId("bench-mig-b").build().start();
+                var bNet = NetworkMessenger.start(b, loopback().peer(aNet.localAddress()).build())) {
+            ManagementService.install(a, management, aNet);
+            ManagementService.install(b, management, bNet);
+            UpgradeGap.quietUpgradeLog(a.nodeId());
+            UpgradeGap.quietUpgradeLog(b.nodeId());
+            if (!aNet.awaitResolvable(Management.profileOf(b.nodeId()), CONNECT_TIMEOUT)
+                    || !bNet.awaitResolvable(Management.profileOf(a.nodeId()), CONNECT_TIMEOUT)) {
+                throw new IllegalStateException("the two bench nodes did not reach each other's management service");
+            }
+            a.add(LOOP, ChainV1::new);
+            String[] nodes = {a.nodeId(), b.nodeId()};
+            for (int i = -warmup; i < repetitions; i++) {
+                int from = Math.floorMod(i, 2);
+                MigrationResult result = migrateWhileChained(a, nodes[from], nodes[1 - from]);
+                if (i >= 0 && result.gapNs() >= 0) {
+                    gapsNs[measured++] = result.gapNs();
+                    held += result.heldMessages();
+                }
+            }
+        }
+        return GapMeasurement.row(id(), "migration (two nodes, TCP loopback)", repetitions
+                + " migrations back and forth", Percentiles.ofSamples(gapsNs, measured), 5_000,
+                String.format(Locale.ROOT, "%d of %d gaps measured after %d warm-up; %d messages held and forwarded;"
+                        + " %d breaks in the message sequence", measured, repetitions, warmup, held, Chain.breaks.get()));
+    }
+
+    private static NetworkConfig.Builder loopback() {
+        return NetworkConfig.builder().listen(new InetSocketAddress("127.0.0.1", 0));
+    }
+
+    private static MigrationResult migrateWhileChained(EtherwareNode requester, String from, String to)
+            throws Exception {
+        Chain.ended = false;
+        Chain.running = true;
+        requester.send(LOOP, new Seq(Chain.lastSequence + 1), LOOP_QOS);
+        MigrationResult result = Management.migrate(requester, from, LOOP, to).get(30, TimeUnit.SECONDS);
+        Chain.running = false;
+        long deadlineNs = System.nanoTime() + TimeUnit.SECONDS.toNanos(10);
+        while (!Chain.ended && System.nanoTime() < deadlineNs) { // the message in flight lands, sends nothing more
+            TimeUnit.MILLISECONDS.sleep(1);
+        }
+        return result;
+    }
+}
