@@ -48,6 +48,16 @@ public record MigrateOutcome(ScenarioRun run, MigrationResult result, String fai
         }
     }
 
+    /**
+     * How long the migration kept the component from running: quiesce, transfer and relocate, from
+     * the hold at the source until the profile points at the target and the held messages are on
+     * their way (the hand-over that releases it there follows in one message). Unlike the
+     * {@linkplain MigrationResult#gapNs() gap}, it holds no idle time waiting for the next message.
+     */
+    public static long pauseNs(MigrationResult result) {
+        return result.quiesceNs() + result.transferNs() + result.relocateNs();
+    }
+
     /** Whether the controller moved. */
     public boolean migrated() {
         return result != null;

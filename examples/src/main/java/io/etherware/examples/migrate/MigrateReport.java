@@ -56,10 +56,11 @@ public final class MigrateReport {
                 run.secondsOf(outcome.requestNs()), result.target(), result.fromNode(), result.toNode(),
                 simpleName(result.implementation()), result.stateSchemaVersion(), result.heldMessages(),
                 outcome.finalHost()));
-        lines.add(String.format(Locale.ROOT, "  management services: prepare %s, quiesce %s, transfer %s, relocate %s;"
-                + " migration gap %s (last message at node 2 → first at node 1), request to answer %s",
+        lines.add(String.format(Locale.ROOT, "  management services: prepare %s, quiesce %s, transfer %s, relocate %s"
+                + " (the controller paused %s, quiesce to relocate); migration gap %s"
+                + " (last message at node 2 → first at node 1, idle time included), request to answer %s",
                 ms(result.prepareNs()), ms(result.quiesceNs()), ms(result.transferNs()), ms(result.relocateNs()),
-                ms(result.gapNs()), ms(outcome.answerNs() - outcome.requestNs())));
+                ms(MigrateOutcome.pauseNs(result)), ms(result.gapNs()), ms(outcome.answerNs() - outcome.requestNs())));
         MigrateOutcome.HandOver handOver = outcome.handOver();
         lines.add(handOver == null ? "  control loop: no torque command from node 1 was recorded"
                 : String.format(Locale.ROOT, "  control loop: node 2's last torque command (cycle %d) → node 1's first"

@@ -55,10 +55,15 @@ class MigrateScenarioIT {
                 && c.outcome() == ControlCycle.Outcome.COMMANDED).count();
         assertTrue(beforeCycles > 0.8 * MIGRATE_AT_NS / run.periodNs(), () -> "node 2 commanded only " + beforeCycles
                 + " cycles before the migration");
-        // The migration gap is below one control period, and no control cycle was lost to it.
-        assertTrue(result.gapNs() >= 0 && result.gapNs() < run.periodNs(),
-                () -> "migration gap " + result.gapNs() + " ns, control period " + run.periodNs() + " ns");
-        assertEquals(0, handOver.lostCycles(), () -> "cycles without a command across the migration: "
+        // The controller paused for less than one control period, and the loop lost nothing beyond
+        // the one cycle whose reading may be in flight when the controller is held (its reply then
+        // reaches node 2, where the controller no longer runs). The gap is reported, not asserted:
+        // it includes the wait for the next Tick, so it depends on where in the period the hold fell.
+        long pauseNs = MigrateOutcome.pauseNs(result);
+        assertTrue(result.gapNs() >= 0 && pauseNs < run.periodNs(),
+                () -> "paused " + pauseNs + " ns (gap " + result.gapNs() + " ns), control period " + run.periodNs()
+                        + " ns");
+        assertTrue(handOver.lostCycles() <= 1, () -> "cycles without a command across the migration: "
                 + handOver.lostCycles());
         assertTrue(Files.size(config.out().resolve("migrate.csv")) > 0, "the CSV was written");
     }
