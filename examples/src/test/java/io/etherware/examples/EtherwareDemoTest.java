@@ -35,7 +35,13 @@ class EtherwareDemoTest {
     @Test
     void shouldAskForAScenarioWhenNoneIsNamed() {
         assertEquals(2, execute());
-        assertTrue(err.toString().contains("Name a scenario: stress, upgrade, bench"), err.toString());
+        assertTrue(err.toString().contains("Name a scenario: stress, upgrade, migrate, bench"), err.toString());
+    }
+
+    @Test
+    void shouldNameTheOptionAndItsRangeWhenTheMigrationLeavesTooLittleTimeOnANode() {
+        assertEquals(2, execute("migrate", "--duration", "10", "--migrate-at", "9"));
+        assertTrue(err.toString().contains("--migrate-at=9.0 is out of range"), err.toString());
     }
 
     @Test
