@@ -1,10 +1,7 @@
 package io.etherware.examples.migrate;
 
-import io.etherware.examples.output.ComparisonTable;
 import io.etherware.examples.scenario.Progress;
-import io.etherware.examples.scenario.RunSummary;
 import io.etherware.examples.scenario.ScenarioOptions;
-import io.etherware.examples.scenario.ScenarioRun;
 import java.io.PrintWriter;
 import java.nio.file.Path;
 import java.util.List;
@@ -57,17 +54,7 @@ public final class MigrateCommand implements Callable<Integer> {
                 Progress.onStandardError("migrate", config.durationNs() / 1e9)).run();
         List<Path> written = MigrateReport.write(config, outcome);
 
-        List<ScenarioRun> phases = List.of(outcome.beforeMigration(), outcome.afterMigration());
-        out.println();
-        out.print(ComparisonTable.format(phases, phases.stream().map(RunSummary::of).toList()));
-        out.println();
-        MigrateReport.migrationLines(outcome).forEach(out::println);
-        out.println();
-        outcome.run().notes().forEach(out::println);
-        out.println();
-        out.println("Wrote:");
-        written.forEach(path -> out.println("  " + path.toAbsolutePath().normalize()));
-        out.flush();
+        MigrateReport.report(config, outcome).print(out, written);
         return outcome.migrated() ? 0 : 1;
     }
 

@@ -1,21 +1,14 @@
 package io.etherware.examples.migrate;
 
-import io.etherware.examples.output.AnglePlots;
-import io.etherware.examples.output.ComparisonTable;
-import io.etherware.examples.output.TraceCsv;
-import io.etherware.examples.scenario.RunSummary;
+import io.etherware.examples.output.PhaseReport;
 import io.etherware.examples.scenario.ScenarioRun;
 import io.etherware.services.management.MigrationResult;
-import java.awt.AWTError;
 import java.io.IOException;
-import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
-import org.slf4j.Logger;
-import org.slf4j.LoggerFactory;
 
 /**
  * The migration scenario's figures and files: the table of the controller on node 2 before and on
@@ -27,7 +20,6 @@ import org.slf4j.LoggerFactory;
  */
 public final class MigrateReport {
 
-    private static final Logger LOG = LoggerFactory.getLogger(MigrateReport.class);
     private static final double PLOT_RANGE_RAD = 0.1;
 
     private MigrateReport() {
@@ -70,34 +62,18 @@ public final class MigrateReport {
         return lines;
     }
 
-    /** Writes the CSV, the summary and the plot; returns the files written. */
+    /** The report: the controller on node 2 before the migration against node 1 after it, and the migration's lines. */
+    public static PhaseReport report(MigrateConfig config, MigrateOutcome outcome) {
+        return new PhaseReport(heading(config), outcome.run(),
+                List.of(outcome.beforeMigration(), outcome.afterMigration()), migrationLines(outcome));
+    }
+
+    /** Writes the CSV, the summary, the plot and node 2's log; returns the files written. */
     public static List<Path> write(MigrateConfig config, MigrateOutcome outcome) throws IOException {
-        Path out = config.out();
-        Files.createDirectories(out);
-        List<Path> written = new ArrayList<>();
-        ScenarioRun run = outcome.run();
-        Path csv = out.resolve("migrate.csv");
-        TraceCsv.write(run, csv);
-        written.add(csv);
-
-        List<ScenarioRun> phases = List.of(outcome.beforeMigration(), outcome.afterMigration());
-        var text = new StringBuilder(heading(config)).append("\n\n")
-                .append(ComparisonTable.format(phases, phases.stream().map(RunSummary::of).toList())).append('\n');
-        migrationLines(outcome).forEach(line -> text.append(line).append('\n'));
-        text.append('\n');
-        run.notes().forEach(note -> text.append(note).append('\n'));
-        Path summary = out.resolve("summary.txt");
-        Files.writeString(summary, text, StandardCharsets.UTF_8);
-        written.add(summary);
-
-        try {
-            written.addAll(AnglePlots.save(AnglePlots.jointAngles(run, String.format(Locale.ROOT,
-                    "Migration node 2 → node 1 at %.0f s: joint angles", run.secondsOf(outcome.requestNs())),
-                    PLOT_RANGE_RAD), out.resolve("migrate")));
-        } catch (IOException | RuntimeException | LinkageError | AWTError e) {
-            LOG.error("could not draw the plot ({}); the CSV and summary are complete", e.toString(), e);
-        }
-        Path nodeLog = out.resolve("node-2.log");
+        List<Path> written = new ArrayList<>(report(config, outcome).write(config.out(), "migrate",
+                String.format(Locale.ROOT, "Migration node 2 → node 1 at %.0f s: joint angles",
+                        outcome.run().secondsOf(outcome.requestNs())), PLOT_RANGE_RAD));
+        Path nodeLog = config.out().resolve("node-2.log");
         if (Files.exists(nodeLog)) {
             written.add(nodeLog);
         }

@@ -1,11 +1,8 @@
 package io.etherware.examples.upgrade;
 
 import io.etherware.examples.EtherwareDemo;
-import io.etherware.examples.output.ComparisonTable;
 import io.etherware.examples.scenario.Progress;
-import io.etherware.examples.scenario.RunSummary;
 import io.etherware.examples.scenario.ScenarioOptions;
-import io.etherware.examples.scenario.ScenarioRun;
 import java.io.IOException;
 import java.io.PrintWriter;
 import java.net.URISyntaxException;
@@ -66,17 +63,7 @@ public final class UpgradeCommand implements Callable<Integer> {
                 Progress.onStandardError("upgrade", config.durationNs() / 1e9)).run();
         List<Path> written = UpgradeReport.write(config, outcome);
 
-        List<ScenarioRun> phases = List.of(outcome.beforeUpgrade(), outcome.afterUpgrade());
-        out.println();
-        out.print(ComparisonTable.format(phases, phases.stream().map(RunSummary::of).toList()));
-        out.println();
-        UpgradeReport.upgradeLines(outcome).forEach(out::println);
-        out.println();
-        outcome.run().notes().forEach(out::println);
-        out.println();
-        out.println("Wrote:");
-        written.forEach(path -> out.println("  " + path.toAbsolutePath().normalize()));
-        out.flush();
+        UpgradeReport.report(config, outcome).print(out, written);
         return outcome.upgraded() ? 0 : 1;
     }
 

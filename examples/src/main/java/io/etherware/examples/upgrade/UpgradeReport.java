@@ -1,24 +1,16 @@
 package io.etherware.examples.upgrade;
 
-import io.etherware.examples.output.AnglePlots;
-import io.etherware.examples.output.ComparisonTable;
-import io.etherware.examples.output.TraceCsv;
-import io.etherware.examples.scenario.RunSummary;
+import io.etherware.examples.output.PhaseReport;
 import io.etherware.examples.scenario.ScenarioRun;
 import io.etherware.pendulum.components.ControlCycle;
 import io.etherware.services.management.UpgradeResult;
-import java.awt.AWTError;
 import java.io.IOException;
-import java.nio.charset.StandardCharsets;
-import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.ArrayList;
 import java.util.Comparator;
 import java.util.List;
 import java.util.Locale;
 import java.util.Optional;
-import org.slf4j.Logger;
-import org.slf4j.LoggerFactory;
 
 /**
  * The upgrade scenario's figures and files: the table of V1 before and V2 after the upgrade, the
@@ -30,7 +22,6 @@ import org.slf4j.LoggerFactory;
  */
 public final class UpgradeReport {
 
-    private static final Logger LOG = LoggerFactory.getLogger(UpgradeReport.class);
     /** Small enough to see the arm settle differently under V1 and V2. */
     private static final double UPGRADE_PLOT_RANGE_RAD = 0.1;
 
@@ -97,36 +88,17 @@ public final class UpgradeReport {
         return lines;
     }
 
+    /** The report: V1 before the upgrade against V2 after it, and the upgrade's lines. */
+    public static PhaseReport report(UpgradeConfig config, UpgradeOutcome outcome) {
+        return new PhaseReport(heading(config), outcome.run(),
+                List.of(outcome.beforeUpgrade(), outcome.afterUpgrade()), upgradeLines(outcome));
+    }
+
     /** Writes the CSV, the summary and the plot; returns the files written. */
     public static List<Path> write(UpgradeConfig config, UpgradeOutcome outcome) throws IOException {
-        Path out = config.out();
-        Files.createDirectories(out);
-        List<Path> written = new ArrayList<>();
-        ScenarioRun run = outcome.run();
-        Path csv = out.resolve("upgrade.csv");
-        TraceCsv.write(run, csv);
-        written.add(csv);
-
-        List<ScenarioRun> phases = List.of(outcome.beforeUpgrade(), outcome.afterUpgrade());
-        List<RunSummary> summaries = phases.stream().map(RunSummary::of).toList();
-        var text = new StringBuilder(heading(config)).append("\n\n")
-                .append(ComparisonTable.format(phases, summaries)).append('\n');
-        upgradeLines(outcome).forEach(line -> text.append(line).append('\n'));
-        text.append('\n');
-        run.notes().forEach(note -> text.append(note).append('\n'));
-        Path summary = out.resolve("summary.txt");
-        Files.writeString(summary, text, StandardCharsets.UTF_8);
-        written.add(summary);
-
-        try {
-            written.addAll(AnglePlots.save(AnglePlots.jointAngles(run, String.format(Locale.ROOT,
-                    "Upgrade V1 (soft) → V2 (tight) at %.0f s: joint angles", run.secondsOf(outcome.requestNs())),
-                    UPGRADE_PLOT_RANGE_RAD),
-                    out.resolve("upgrade")));
-        } catch (IOException | RuntimeException | LinkageError | AWTError e) {
-            LOG.error("could not draw the plot ({}); the CSV and summary are complete", e.toString(), e);
-        }
-        return written;
+        return report(config, outcome).write(config.out(), "upgrade", String.format(Locale.ROOT,
+                "Upgrade V1 (soft) → V2 (tight) at %.0f s: joint angles", outcome.run().secondsOf(outcome.requestNs())),
+                UPGRADE_PLOT_RANGE_RAD);
     }
 
     private static String simpleName(String className) {
