@@ -55,6 +55,8 @@ public final class ControlNodeCommand implements Callable<Integer> {
     @Override
     public Integer call() throws Exception {
         InetSocketAddress plant = address(connect);
+        spec.commandLine().getErr().println("migrate-node: " + MigrateConfig.CONTROL_NODE + " starting, dialing " + plant);
+        spec.commandLine().getErr().flush();
         CycleReport.register();
         PrintWriter out = spec.commandLine().getOut();
         try (var node = EtherwareNode.builder().nodeId(MigrateConfig.CONTROL_NODE)

@@ -232,18 +232,34 @@ public final class MigrateScenario {
         }
     }
 
-    /** Starts node 2's JVM on this JVM's class path and waits until it prints {@code READY}. */
+    /**
+     * Starts node 2's JVM on this JVM's class path and waits until it prints {@code READY}. Its
+     * standard output is read by a thread of its own to the end (not by the common pool, which a
+     * busy JVM may not have free), so node 2 never blocks on a full pipe.
+     */
     private static Process startNode2(InetSocketAddress plant, String listenerName, Path log) throws IOException {
         String classPath = System.getProperty("surefire.test.class.path", System.getProperty("java.class.path"));
         List<String> command = List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
                 "--enable-native-access=ALL-UNNAMED", "-cp", classPath, EtherwareDemo.class.getName(), "migrate-node",
                 "--connect", plant.getHostString() + ":" + plant.getPort(), "--listener", listenerName);
         Process process = new ProcessBuilder(command).redirectError(log.toFile()).start();
-        var ready = CompletableFuture.supplyAsync(() -> {
+        var ready = new CompletableFuture<Boolean>();
+        var printed = new StringBuilder();
+        Thread.ofPlatform().name("node-2-stdout").daemon().start(() -> {
             try (var out = new BufferedReader(new InputStreamReader(process.getInputStream(), StandardCharsets.UTF_8))) {
-                return ControlNodeCommand.READY.equals(out.readLine());
+                for (String line = out.readLine(); line != null; line = out.readLine()) {
+                    if (line.equals(ControlNodeCommand.READY)) {
+                        ready.complete(true);
+                    } else if (!ready.isDone()) {
+                        synchronized (printed) {
+                            printed.append(line).append('\n');
+                        }
+                    }
+                }
             } catch (IOException e) {
-                return false;
+                // the process is gone; the wait below reports it
+            } finally {
+                ready.complete(false);
             }
         });
         try {
@@ -255,8 +271,38 @@ public final class MigrateScenario {
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
         }
+        boolean alive = process.isAlive();
+        if (alive) {
+            dumpThreads(process.pid(), log);
+            dumpThreads(ProcessHandle.current().pid(), log);
+        }
         process.destroyForcibly();
-        throw new IOException("node 2's JVM did not come up within " + NODE_START_TIMEOUT_S + " s; its log: " + log);
+        String output;
+        synchronized (printed) {
+            output = printed.toString().strip();
+        }
+        throw new IOException("node 2's JVM did not report READY within " + NODE_START_TIMEOUT_S + " s ("
+                + (alive ? "still running" : "exited with " + process.exitValue()) + "); its standard output: '"
+                + output + "'; its log: " + log);
+    }
+
+    /**
+     * Appends a thread dump of process {@code pid} to {@code log} ({@code jcmd <pid> Thread.print}),
+     * for a node that did not come up: which threads ran, which waited. Best effort.
+     */
+    private static void dumpThreads(long pid, Path log) {
+        Path jcmd = Path.of(System.getProperty("java.home"), "bin", "jcmd");
+        try {
+            Process dump = new ProcessBuilder(jcmd.toString(), Long.toString(pid), "Thread.print")
+                    .redirectErrorStream(true).redirectOutput(ProcessBuilder.Redirect.appendTo(log.toFile())).start();
+            if (!dump.waitFor(20, TimeUnit.SECONDS)) {
+                dump.destroyForcibly();
+            }
+        } catch (IOException e) {
+            LOG.warn("could not dump the threads of process {}: {}", pid, e.toString());
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
     }
 
     /** Closes node 2's input, which ends it; forcibly after 30 s. */
