@@ -207,8 +207,11 @@ class NetworkBadInputTest {
             assertEquals(new Text("by the book"), arrived.contents());
             assertEquals(new MessageId("mallory", 1), arrived.messageId());
         }
-        Await.until("b sees the peer leave", () -> b.net.stats().closes(CloseReason.PEER_CLOSED) == 1);
-        assertEquals(0, b.net.stats().badInputCloses());
+        // The raw peer closes without reading what b sent it (acknowledgements, announcements), so
+        // its kernel may reset the connection rather than end it: b sees either, never bad input.
+        Await.until("b sees the peer leave", () -> b.net.stats().closes(CloseReason.PEER_CLOSED)
+                + b.net.stats().closes(CloseReason.IO_ERROR) == 1);
+        assertEquals(0, b.net.stats().badInputCloses(), () -> b.net.stats().toString());
     }
 
     private static Message message(String text) {

@@ -74,7 +74,11 @@ class NetworkTimeAcrossNodesTest {
                     finalEstimate.driftPpm(), finalEstimate.samples(), reverseErrorNs / 1000, worstLatenessNs / 1000,
                     lateness.size());
             assertTrue(finalEstimate.isMeasured());
-            assertTrue(worstErrorNs < 1_000_000, "worst error " + worstErrorNs + " ns");
+            // Within a millisecond once the first burst has settled (after 1 s); during the burst on a
+            // loaded machine one slow round trip can hold a first estimate off by more (half its time).
+            assertTrue(worstSettledErrorNs < 1_000_000, "worst error after the first second " + worstSettledErrorNs
+                    + " ns");
+            assertTrue(worstErrorNs < 10_000_000, "worst error " + worstErrorNs + " ns");
             assertTrue(reverseErrorNs < 1_000_000, "reverse error " + reverseErrorNs + " ns");
             // Untranslated, the time stamps would be 2.5 s in the future; translated, they are a
             // delivery latency ago (a loaded box may delay a handler, not by a second).
