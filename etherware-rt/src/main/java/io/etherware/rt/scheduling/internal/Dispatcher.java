@@ -194,7 +194,6 @@ public final class Dispatcher implements Runnable {
 
     private void account(Job job, long startNs, long endNs) {
         long executionNs = endNs - startNs;
-        recorder.recordRun(startNs - job.releaseNs(), executionNs);
         long deadlineNs = job.absoluteDeadlineNs();
         boolean missed = deadlineNs != Long.MAX_VALUE && endNs > deadlineNs;
         ComponentRecorder component = context.components.get(job.targetName());
@@ -205,6 +204,8 @@ public final class Dispatcher implements Runnable {
         if (missed) {
             onMiss(job, startNs, endNs, deadlineNs);
         }
+        // Last, so that a reader who sees the dispatcher's run count sees the job's other figures too.
+        recorder.recordRun(startNs - job.releaseNs(), executionNs);
     }
 
     private void onMiss(Job job, long startNs, long endNs, long deadlineNs) {
