@@ -81,9 +81,10 @@ class NetworkTimeAcrossNodesTest {
             assertTrue(worstErrorNs < 10_000_000, "worst error " + worstErrorNs + " ns");
             assertTrue(reverseErrorNs < 1_000_000, "reverse error " + reverseErrorNs + " ns");
             // Untranslated, the time stamps would be 2.5 s in the future; translated, they are a
-            // delivery latency ago (a loaded box may delay a handler, not by a second).
+            // delivery latency ago (a loaded box may delay a handler, not by a second), give or take
+            // the estimate's error, which the first burst's messages carry too (bounded above).
             assertTrue(lateness.size() > 50);
-            assertTrue(lateness.stream().allMatch(ns -> ns > -1_000_000 && ns < 1_000_000_000), lateness.toString());
+            assertTrue(lateness.stream().allMatch(ns -> ns > -10_000_000 && ns < 1_000_000_000), lateness.toString());
         }
     }
 }
