@@ -18,15 +18,24 @@ import java.util.Objects;
  * @param contents      the payload, a registered record; {@link Empty#INSTANCE} for none
  * @param messageId     unique within the creating node
  * @param correlationId for a reply, the id of the request it answers; otherwise null
+ * @param origin        for a message that arrived from another node, where it came from as the
+ *                      network layer established it (see {@link Origin}); null for a message made
+ *                      on this node. Never serialized: each node sets it from the connection.
  */
 public record Message(Profile profile, Profile sender, long timeStamp, QoS qos, Contents contents,
-                      MessageId messageId, MessageId correlationId) {
+                      MessageId messageId, MessageId correlationId, Origin origin) {
 
     public Message {
         Objects.requireNonNull(profile, "profile");
         Objects.requireNonNull(qos, "qos");
         Objects.requireNonNull(contents, "contents");
         Objects.requireNonNull(messageId, "messageId");
+    }
+
+    /** A message made on this node (no {@link #origin()}). */
+    public Message(Profile profile, Profile sender, long timeStamp, QoS qos, Contents contents, MessageId messageId,
+                   MessageId correlationId) {
+        this(profile, sender, timeStamp, qos, contents, messageId, correlationId, null);
     }
 
     /** Whether this message answers a request. */
@@ -41,12 +50,22 @@ public record Message(Profile profile, Profile sender, long timeStamp, QoS qos, 
 
     /** This message with another receiver, e.g. after a query was resolved. */
     public Message withProfile(Profile newProfile) {
-        return new Message(newProfile, sender, timeStamp, qos, contents, messageId, correlationId);
+        return new Message(newProfile, sender, timeStamp, qos, contents, messageId, correlationId, origin);
     }
 
     /** This message with its time stamp translated into another clock (NetworkTime). */
     public Message withTimeStamp(long newTimeStamp) {
-        return new Message(profile, sender, newTimeStamp, qos, contents, messageId, correlationId);
+        return new Message(profile, sender, newTimeStamp, qos, contents, messageId, correlationId, origin);
+    }
+
+    /** This message as received from the network through {@code newOrigin} (the network layer). */
+    public Message withOrigin(Origin newOrigin) {
+        return new Message(profile, sender, timeStamp, qos, contents, messageId, correlationId, newOrigin);
+    }
+
+    /** Whether this message was made on this node (it did not arrive from the network). */
+    public boolean isLocal() {
+        return origin == null;
     }
 
     /** The contents cast to the expected type, or an exception naming both types. */

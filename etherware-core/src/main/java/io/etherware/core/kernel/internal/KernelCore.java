@@ -204,7 +204,7 @@ public final class KernelCore implements Kernel, JobRunner {
     public CompletableFuture<Message> request(Message request, long timeoutNs) {
         Message withSender = request.hasSender() ? request
                 : new Message(request.profile(), nodeProfile, request.timeStamp(), request.qos(), request.contents(),
-                        request.messageId(), request.correlationId());
+                        request.messageId(), request.correlationId(), request.origin());
         return request(withSender, null, timeoutNs);
     }
 
