@@ -32,7 +32,18 @@ public enum CloseReason {
     /** A message frame whose XML does not decode ({@link io.etherware.core.codec.MessageCodec}). */
     MALFORMED_MESSAGE(11, true),
     /** A message frame out of sequence (a gap, or an acknowledgement of what was never sent). */
-    SEQUENCE_ERROR(12, true);
+    SEQUENCE_ERROR(12, true),
+    /**
+     * The peer could not be authenticated: its TLS handshake failed, or its HELLO names another
+     * node than its certificate.
+     */
+    AUTHENTICATION_FAILED(13, true),
+    /** A message sent directly whose id names another node than the connection's. */
+    ORIGIN_MISMATCH(14, true),
+    /** The peer read nothing of what was written to it within the heartbeat timeout. */
+    NOT_READING(15, false),
+    /** A flood of new connections pushed this one, still in its handshake, out. */
+    HANDSHAKE_EVICTED(16, false);
 
     private final int code;
     private final boolean badInput;

@@ -4,11 +4,16 @@ import java.io.IOException;
 import java.net.InetSocketAddress;
 import java.net.ServerSocket;
 import java.net.Socket;
+import java.nio.file.Path;
+import java.util.Optional;
 
 /**
- * Makes the sockets a {@link NetworkMessenger} talks through: the seam where TLS goes (an
- * implementation returning {@code SSLServerSocket}s and {@code SSLSocket}s) without touching the
- * messenger. The messenger sets TCP_NODELAY, keep-alive and timeouts on what it gets.
+ * Makes the sockets a {@link NetworkMessenger} talks through, and says who is at the other end:
+ * {@link #tls} authenticates both nodes of every connection with certificates whose identity is
+ * their node id (mutual TLS); {@link #plain()} authenticates nobody and is meant for loopback
+ * development (a messenger refuses it beyond loopback unless configured
+ * {@link NetworkConfig.Builder#insecure insecure}). The messenger sets TCP_NODELAY, keep-alive and
+ * timeouts on what it gets.
  *
  * <p>Thread-safety: implementations must be thread-safe; the messenger calls {@link #connect}
  * from its dialing threads. Both methods may block (that is what those threads are for).
@@ -21,9 +26,49 @@ public interface ConnectionFactory {
     /** A socket connected to {@code address}, giving up after {@code timeoutMs}. */
     Socket connect(InetSocketAddress address, int timeoutMs) throws IOException;
 
-    /** Plain TCP. */
+    /**
+     * Authenticates the peer of a connection, before anything else is read or written on it:
+     * for TLS, completes the handshake and returns the node id the peer's certificate names.
+     * Called once per connection, on the connection's own thread, with the socket's read timeout
+     * set to the handshake timeout.
+     *
+     * @return the authenticated node id, or empty if this factory does not authenticate peers
+     * @throws IOException if the peer cannot be authenticated (the connection is closed)
+     */
+    default Optional<String> authenticate(Socket socket) throws IOException {
+        return Optional.empty();
+    }
+
+    /** Whether {@link #authenticate} establishes who the peer is (a node id from a certificate). */
+    default boolean authenticatesPeers() {
+        return false;
+    }
+
+    /**
+     * The node id this node's own credentials name, if the factory has any: the messenger refuses
+     * to start when it differs from the node's id.
+     */
+    default Optional<String> localNodeId() {
+        return Optional.empty();
+    }
+
+    /** Plain TCP: no encryption, no authentication; for loopback development. */
     static ConnectionFactory plain() {
         return PlainTcp.INSTANCE;
+    }
+
+    /**
+     * Mutual TLS 1.3 from PKCS#12 key stores (see {@link TlsConnectionFactory}).
+     *
+     * @param keyStore           this node's private key and certificate chain (CN = its node id)
+     * @param keyStorePassword   the key store's (and key's) password
+     * @param trustStore         the certificates of the deployment's CA, which every node's
+     *                           certificate must chain to
+     * @param trustStorePassword the trust store's password
+     */
+    static ConnectionFactory tls(Path keyStore, char[] keyStorePassword, Path trustStore, char[] trustStorePassword)
+            throws IOException {
+        return TlsConnectionFactory.fromPkcs12(keyStore, keyStorePassword, trustStore, trustStorePassword);
     }
 
     /** Plain TCP sockets from {@code java.net}. */

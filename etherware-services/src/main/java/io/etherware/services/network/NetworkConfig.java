@@ -39,6 +39,18 @@ import java.util.Objects;
  *                                  refused
  * @param maxHops                   relays a message may make through nodes whose routes point on
  *                                  (during a migration) before it is undeliverable
+ * @param maxPendingHandshakes      connections in their handshake at once; a new one beyond this
+ *                                  closes the oldest pending one, so a flood of idle connections
+ *                                  cannot lock honest peers out (established connections count
+ *                                  against {@code maxConnections} only)
+ * @param maxQueuedBytesPerPeer     bytes of encoded messages waiting for a peer or written and not
+ *                                  yet acknowledged by it; beyond this, messages to it are shed or
+ *                                  refused like those beyond {@code queueCapacity}
+ * @param announcePolicy            which application profiles a peer may announce here
+ * @param insecure                  whether plain, unauthenticated links beyond loopback were chosen
+ *                                  on purpose ({@link Builder#insecure}); without it a messenger
+ *                                  whose factory does not authenticate peers only listens on and
+ *                                  dials loopback addresses
  */
 public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddress> peers,
                             ConnectionFactory connectionFactory, MessageCodec codec, int maxFrameBytes,
@@ -46,7 +58,8 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
                             long handshakeTimeoutNs, long connectTimeoutNs, long reconnectInitialBackoffNs,
                             long reconnectMaxBackoffNs, double reconnectJitter, long peerDownGraceNs,
                             long timeProbeIntervalNs, int timeProbeBurst, int timeWindowSize, int maxConnections,
-                            int maxHops) {
+                            int maxHops, int maxPendingHandshakes, long maxQueuedBytesPerPeer,
+                            AnnouncePolicy announcePolicy, boolean insecure) {
 
     /** Default {@link #maxFrameBytes}: 1 MiB. */
     public static final int DEFAULT_MAX_FRAME_BYTES = 1 << 20;
@@ -82,6 +95,39 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
         requireRange("timeWindowSize", timeWindowSize, 1, 1024);
         requireRange("maxConnections", maxConnections, 1, 100_000);
         requireRange("maxHops", maxHops, 0, 32);
+        requireRange("maxPendingHandshakes", maxPendingHandshakes, 1, 100_000);
+        requireRange("maxQueuedBytesPerPeer", maxQueuedBytesPerPeer, 2L * maxFrameBytes, 1L << 40);
+        Objects.requireNonNull(announcePolicy, "announcePolicy=null: use AnnouncePolicy.any()");
+        if (!connectionFactory.authenticatesPeers() && !insecure) {
+            requireLoopback("listenAddress", listenAddress);
+            for (InetSocketAddress peer : peers) {
+                requireLoopback("peer", peer);
+            }
+        }
+    }
+
+    /** Whether links of this configuration go beyond loopback without authentication (chosen on purpose). */
+    public boolean isInsecureBeyondLoopback() {
+        if (connectionFactory.authenticatesPeers()) {
+            return false;
+        }
+        boolean beyond = !isLoopback(listenAddress);
+        for (InetSocketAddress peer : peers) {
+            beyond |= !isLoopback(peer);
+        }
+        return beyond;
+    }
+
+    private static boolean isLoopback(InetSocketAddress address) {
+        return !address.isUnresolved() && address.getAddress().isLoopbackAddress();
+    }
+
+    private static void requireLoopback(String field, InetSocketAddress address) {
+        if (!isLoopback(address)) {
+            throw new IllegalArgumentException(field + "=" + address + " is beyond loopback, and plain TCP"
+                    + " authenticates no one: configure TLS (connectionFactory(ConnectionFactory.tls(...))), or, on a"
+                    + " network you trust, choose plain links with insecure(true)");
+        }
     }
 
     private static void requireRange(String field, long value, long min, long max) {
@@ -108,7 +154,9 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
      * unacknowledged per peer; heartbeat every 500 ms, dead after 3 s of silence; handshake within
      * 2 s, dial within 2 s; redial after 50 ms doubling to 5 s, with 20 % jitter; a peer down for
      * 10 s loses its messages and routes; NetworkTime burst of 8 exchanges, then one per second,
-     * filter window {@value NetworkTime#DEFAULT_WINDOW_SIZE}; 64 connections; 4 relays.
+     * filter window {@value NetworkTime#DEFAULT_WINDOW_SIZE}; 64 connections, of which 16 in their
+     * handshake; 4 relays; 64 MiB queued or unacknowledged per peer; any peer may announce any
+     * application profile; not insecure (plain TCP only on loopback).
      *
      * <p>Not thread-safe; use it on one thread.
      */
@@ -133,6 +181,10 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
         private int timeWindowSize = NetworkTime.DEFAULT_WINDOW_SIZE;
         private int maxConnections = 64;
         private int maxHops = 4;
+        private int maxPendingHandshakes = 16;
+        private long maxQueuedBytesPerPeer = 64L << 20;
+        private AnnouncePolicy announcePolicy = AnnouncePolicy.any();
+        private boolean insecure;
 
         Builder() {
         }
@@ -239,6 +291,34 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
             return this;
         }
 
+        /** Connections in their handshake at once; a new one closes the oldest beyond this. */
+        public Builder maxPendingHandshakes(int value) {
+            maxPendingHandshakes = value;
+            return this;
+        }
+
+        /** Bytes waiting for, or unacknowledged by, one peer before its messages are shed or refused. */
+        public Builder maxQueuedBytesPerPeer(long value) {
+            maxQueuedBytesPerPeer = value;
+            return this;
+        }
+
+        /** Which application profiles peers may announce to this node. */
+        public Builder announcePolicy(AnnouncePolicy value) {
+            announcePolicy = value;
+            return this;
+        }
+
+        /**
+         * Chooses plain TCP links beyond loopback on purpose: no peer is authenticated, so any host
+         * that reaches the port can speak for any node. Only for an isolated network; the
+         * messenger logs a warning when it starts so.
+         */
+        public Builder insecure(boolean value) {
+            insecure = value;
+            return this;
+        }
+
         /** The validated configuration. */
         public NetworkConfig build() {
             MessageCodec effectiveCodec = codec;
@@ -248,7 +328,8 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
             return new NetworkConfig(listenAddress, peers, connectionFactory, effectiveCodec, maxFrameBytes,
                     queueCapacity, windowMessages, heartbeatIntervalNs, heartbeatTimeoutNs, handshakeTimeoutNs,
                     connectTimeoutNs, reconnectInitialBackoffNs, reconnectMaxBackoffNs, reconnectJitter, peerDownGraceNs,
-                    timeProbeIntervalNs, timeProbeBurst, timeWindowSize, maxConnections, maxHops);
+                    timeProbeIntervalNs, timeProbeBurst, timeWindowSize, maxConnections, maxHops, maxPendingHandshakes,
+                    maxQueuedBytesPerPeer, announcePolicy, insecure);
         }
     }
 }

@@ -25,10 +25,13 @@ import java.util.Map;
  * @param handshakesFailed     connections closed before completing the handshake
  * @param closes               connections ended, by reason (bad input among them, see
  *                             {@link CloseReason#isBadInput()})
+ * @param announcementsRefused profiles peers announced that this node refused: another node's node
+ *                             profile, or one the {@link AnnouncePolicy} does not allow
  */
 public record NetworkStats(String nodeId, int connectedPeers, long messagesSent, long messagesResent,
                            long messagesReceived, long duplicatesDropped, long overflowDropped, long undeliverable,
-                           long connectionsOpened, long handshakesFailed, Map<CloseReason, Long> closes) {
+                           long connectionsOpened, long handshakesFailed, Map<CloseReason, Long> closes,
+                           long announcementsRefused) {
 
     public NetworkStats {
         closes = Map.copyOf(closes);

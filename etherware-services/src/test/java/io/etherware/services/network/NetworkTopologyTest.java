@@ -72,19 +72,26 @@ class NetworkTopologyTest {
     }
 
     @Test
-    void shouldRouteAProfileAnnouncedTwiceToTheLowerNodeIdAndFollowItWhenItLeaves() throws Exception {
+    void shouldKeepAProfileAnnouncedTwiceRoutedToTheFirstClaimantAndFollowTheSecondWhenItLeaves() throws Exception {
         try (var b = TestNode.start("b", TestNode.config());
              var c = TestNode.start("c", TestNode.config());
              var a = TestNode.start("a", TestNode.config().peer(c.address()).peer(b.address()))) {
             c.node.add(DUP, () -> (message, context) -> context.reply(message, new Text("from c")));
             assertTrue(a.net.awaitResolvable(DUP, Duration.ofSeconds(30)));
+            Await.until("a routes dup to c", () -> routesTo(a, "c", DUP));
+            assertTrue(a.net.awaitConnected("b", Duration.ofSeconds(30)));
+            // b, whose id sorts lower, announces it too: the first claimant keeps it.
             b.node.add(DUP, () -> (message, context) -> context.reply(message, new Text("from b")));
+            // Announcements are whole sets, in order: once a routes the marker, it has b's claim.
+            Profile marker = Profile.of("marker", "node", "b");
+            b.node.add(marker, () -> (message, context) -> { });
+            Await.until("a has b's announcement", () -> routesTo(a, "b", marker));
+            assertEquals(new Text("from c"), a.node.requestBlocking(DUP, new Text("?")).contents());
+            assertTrue(routesTo(a, "c", DUP), "the later claim does not draw the route");
+
+            c.node.remove(DUP);
             Await.until("a routes dup to b", () -> routesTo(a, "b", DUP));
             assertEquals(new Text("from b"), a.node.requestBlocking(DUP, new Text("?")).contents());
-
-            b.node.remove(DUP);
-            Await.until("a routes dup to c", () -> routesTo(a, "c", DUP));
-            assertEquals(new Text("from c"), a.node.requestBlocking(DUP, new Text("?")).contents());
         }
     }
 

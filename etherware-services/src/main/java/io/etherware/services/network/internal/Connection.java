@@ -2,6 +2,7 @@ package io.etherware.services.network.internal;
 
 import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageFormatException;
+import io.etherware.core.message.Origin;
 import io.etherware.services.network.CloseReason;
 import io.etherware.services.time.TimeSample;
 import java.io.EOFException;
@@ -12,6 +13,7 @@ import java.net.SocketTimeoutException;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.concurrent.TimeUnit;
+import javax.net.ssl.SSLException;
 
 /**
  * One TCP connection to another node: the handshake, then a reader (the thread that ran the
@@ -38,6 +40,8 @@ final class Connection implements Runnable {
     private final String remote;
     private volatile Peer peer;
     private Frame.Hello hello;
+    /** The node id the connection authenticated (TLS), or null on a plain link. */
+    private String authenticatedId;
     private FrameReader reader;
     private FrameWriter writer;
     private int peerMaxFrameBytes;
@@ -54,6 +58,8 @@ final class Connection implements Runnable {
     final WriterRequests requests = new WriterRequests();
 
     private volatile long lastWriteNs;
+    /** When the writer thread's current write began, or 0. */
+    private volatile long writingSinceNs;
     private volatile long lastAckSent;
     /** Bytes framed on this connection; written by whoever owns the output. */
     private volatile long bytesWritten;
@@ -98,6 +104,8 @@ final class Connection implements Runnable {
             engine.counters().handshakesFailed.increment();
             close(closing ? CloseReason.SHUTDOWN : CloseReason.IO_ERROR, "handshake failed: " + e);
             return;
+        } finally {
+            engine.handshakeEnded(this);
         }
         if (!activated) {
             return;
@@ -112,6 +120,13 @@ final class Connection implements Runnable {
         socket.setTcpNoDelay(true);
         socket.setKeepAlive(true);
         socket.setSoTimeout((int) Math.max(1, TimeUnit.NANOSECONDS.toMillis(engine.config().handshakeTimeoutNs())));
+        try {
+            authenticatedId = engine.config().connectionFactory().authenticate(socket).orElse(null);
+        } catch (SocketTimeoutException e) {
+            throw e;
+        } catch (SSLException e) {
+            throw new ProtocolException(CloseReason.AUTHENTICATION_FAILED, "TLS handshake failed: " + e.getMessage(), e);
+        }
         reader = new FrameReader(socket.getInputStream(), engine.config().maxFrameBytes());
         writer = new FrameWriter(socket.getOutputStream());
         writer.hello(new Frame.Hello(Frame.VERSION, engine.nodeId(), engine.incarnation(),
@@ -119,6 +134,10 @@ final class Connection implements Runnable {
         writer.flush();
         hello = reader.readHello();
         long helloArrivedEpochNs = engine.kernel().clock().epochNanos();
+        if (authenticatedId != null && !authenticatedId.equals(hello.nodeId())) {
+            throw new ProtocolException(CloseReason.AUTHENTICATION_FAILED, "the peer's certificate names node '"
+                    + authenticatedId + "' but its HELLO says '" + hello.nodeId() + "'");
+        }
         if (hello.nodeId().equals(engine.nodeId())) {
             throw new ProtocolException(CloseReason.BAD_HANDSHAKE, "the peer has this node's id '" + hello.nodeId()
                     + "': node ids must be unique (or a node dialed itself)");
@@ -167,6 +186,9 @@ final class Connection implements Runnable {
                         }
                     }
                     case Frame.Bye goodbye -> {
+                        if (CloseReason.ofCode(goodbye.code()) == CloseReason.SHUTDOWN && peer.active() == this) {
+                            engine.peerShutDown(peer);
+                        }
                         close(CloseReason.PEER_CLOSED, "node '" + peer.nodeId + "' closed the connection: "
                                 + CloseReason.ofCode(goodbye.code()) + ": " + goodbye.text());
                         return;
@@ -176,14 +198,14 @@ final class Connection implements Runnable {
                             "RESUME after the handshake");
                 }
             }
-        } catch (MalformedMessageException e) {
+        } catch (RefusedMessageException e) {
             peer.lock.lock();
             try {
                 requests.reject(new Frame.Reject(e.seq, e.getMessage()));
             } finally {
                 peer.lock.unlock();
             }
-            close(CloseReason.MALFORMED_MESSAGE, e.getMessage());
+            close(e.reason(), e.getMessage());
         } catch (ProtocolException e) {
             close(e.reason(), e.getMessage());
         } catch (SocketTimeoutException e) {
@@ -197,12 +219,15 @@ final class Connection implements Runnable {
         }
     }
 
-    /** A message frame whose XML did not decode: refused, and the connection closes. */
-    private static final class MalformedMessageException extends ProtocolException {
+    /**
+     * A message frame refused for good (its XML does not decode, or it lies about its origin): its
+     * sender hears of it by REJECT, and the connection closes.
+     */
+    private static final class RefusedMessageException extends ProtocolException {
         final long seq;
 
-        MalformedMessageException(long seq, MessageFormatException cause) {
-            super(CloseReason.MALFORMED_MESSAGE, "message frame " + seq + " does not decode: " + cause.getMessage(), cause);
+        RefusedMessageException(long seq, CloseReason reason, String text, Throwable cause) {
+            super(reason, "message frame " + seq + " " + text, cause);
             this.seq = seq;
         }
     }
@@ -214,9 +239,10 @@ final class Connection implements Runnable {
             try {
                 message = engine.codec().decode(data.xml());
             } catch (MessageFormatException e) {
-                throw new MalformedMessageException(data.seq(), e);
+                throw new RefusedMessageException(data.seq(), CloseReason.MALFORMED_MESSAGE, "does not decode: "
+                        + e.getMessage(), e);
             }
-            engine.deliverLocally(engine.networkTime().toLocal(peer.nodeId, message), data.hops());
+            engine.deliverLocally(engine.networkTime().toLocal(peer.nodeId, message.withOrigin(originOf(data, message))));
         });
         if (!delivered) {
             if (peer.active() != this) {
@@ -226,6 +252,24 @@ final class Connection implements Runnable {
         } else if (peer.inboundCount() - lastAckSent >= engine.config().windowMessages() / 4) {
             requestAck();
         }
+    }
+
+    /**
+     * Where a message came from, from this connection's node, never from the message alone: sent
+     * directly (hops 0), its id must name this connection's node; relayed, the relay vouches for
+     * the origin its id names (the rule is in {@link Origin}).
+     */
+    private Origin originOf(Frame.Data data, Message message) throws RefusedMessageException {
+        String named = message.messageId().nodeId();
+        if (data.hops() == 0) {
+            if (!named.equals(peer.nodeId)) {
+                throw new RefusedMessageException(data.seq(), CloseReason.ORIGIN_MISMATCH, "has id " + message.messageId()
+                        + " of node '" + named + "' but was sent directly by node '" + peer.nodeId
+                        + "': a node may only send messages under its own id", null);
+            }
+            return Origin.direct(peer.nodeId, authenticatedId != null);
+        }
+        return new Origin(named, peer.nodeId, data.hops(), authenticatedId != null);
     }
 
     // ---------------------------------------------------------------- the writer thread
@@ -258,6 +302,24 @@ final class Connection implements Runnable {
     }
 
     private void write(WriterTurn turn) throws IOException {
+        writingSinceNs = engine.nowNs();
+        try {
+            writeTurn(turn);
+        } finally {
+            writingSinceNs = 0;
+        }
+    }
+
+    /**
+     * How long the current write has been blocked (0: none in progress): a peer that reads nothing
+     * fills the socket's buffers, and the writer's next write never returns.
+     */
+    long writeBlockedForNs(long nowNs) {
+        long since = writingSinceNs;
+        return since == 0 ? 0 : nowNs - since;
+    }
+
+    private void writeTurn(WriterTurn turn) throws IOException {
         long ackNow = peer.inboundCount();
         boolean carriedAck = false;
         if (turn.reject != null) {
@@ -307,41 +369,19 @@ final class Connection implements Runnable {
         lastWriteNs = engine.nowNs();
     }
 
-    /** Encodes, numbers and writes new messages; reports those that cannot go. */
+    /** Numbers and writes new messages (encoded by their senders); reports those that cannot go. */
     private boolean writeFresh(List<Outgoing> fresh, long ackNow) throws IOException {
         var encoded = new ArrayList<Outgoing>(fresh.size());
         var xml = new ArrayList<byte[]>(fresh.size());
-        List<String> refusals = null;
-        List<Outgoing> refused = null;
         for (Outgoing outgoing : fresh) {
-            if (outgoing.xml() != null) { // encoded by its sender, checked against the frame limit
+            int frameBytes = outgoing.xml().length + Frame.DATA_OVERHEAD_BYTES;
+            if (frameBytes <= peerMaxFrameBytes) {
                 encoded.add(outgoing);
                 xml.add(outgoing.xml());
-                continue;
-            }
-            String problem;
-            try {
-                byte[] document = engine.codec().encode(outgoing.message());
-                if (document.length + Frame.DATA_OVERHEAD_BYTES <= peerMaxFrameBytes) {
-                    encoded.add(outgoing);
-                    xml.add(document);
-                    continue;
-                }
-                problem = "its frame of " + (document.length + Frame.DATA_OVERHEAD_BYTES) + " bytes is over the "
-                        + peerMaxFrameBytes + " bytes node '" + peer.nodeId + "' accepts";
-            } catch (MessageFormatException e) {
-                problem = "it does not encode: " + e.getMessage();
-            }
-            if (refused == null) {
-                refused = new ArrayList<>();
-                refusals = new ArrayList<>();
-            }
-            refused.add(outgoing);
-            refusals.add(problem);
-        }
-        if (refused != null) {
-            for (int i = 0; i < refused.size(); i++) {
-                engine.lost(refused.get(i).message(), refusals.get(i));
+            } else {
+                // Queued before this peer said its limit, which is below this node's own.
+                engine.lost(outgoing.message(), "its frame of " + frameBytes + " bytes is over the "
+                        + peerMaxFrameBytes + " bytes node '" + peer.nodeId + "' accepts");
             }
         }
         List<InFlight> assigned = peer.assign(this, encoded, xml);
@@ -480,9 +520,14 @@ final class Connection implements Runnable {
             closed = true;
         }
         closing = true;
+        if (aborted) {
+            // abort() took the socket away: no BYE, nobody to wait for.
+            reason = abortReason;
+            detail = abortDetail;
+        }
         Peer owner = peer;
         boolean wasActive = false;
-        boolean sayBye = reason != CloseReason.PEER_CLOSED;
+        boolean sayBye = reason != CloseReason.PEER_CLOSED && !aborted;
         if (owner != null) {
             owner.lock.lock();
             try {
@@ -534,6 +579,38 @@ final class Connection implements Runnable {
             // Closing anyway.
         }
         engine.connectionEnded(this, wasActive, reason);
+    }
+
+    private volatile boolean aborted;
+    private volatile CloseReason abortReason;
+    private volatile String abortDetail;
+
+    /**
+     * Ends the connection at once, without BYE or waiting for its threads (a peer that reads
+     * nothing, or a pending handshake pushed out): the socket closes on a thread of its own (a TLS
+     * close may try to write), which wakes this connection's threads to finish the close.
+     */
+    void abort(CloseReason reason, String detail) {
+        synchronized (this) {
+            if (closed || aborted) {
+                return;
+            }
+            abortReason = reason;
+            abortDetail = detail;
+            aborted = true;
+        }
+        closing = true;
+        Thread.ofPlatform().daemon().name("etherware-net-" + engine.nodeId() + "-abort").start(() -> {
+            try {
+                socket.close();
+            } catch (IOException e) {
+                // Closed either way.
+            }
+            Thread reading = readerThread;
+            if (reading == null || !reading.isAlive()) {
+                close(reason, detail); // nobody reads this connection to notice
+            }
+        });
     }
 
     /**

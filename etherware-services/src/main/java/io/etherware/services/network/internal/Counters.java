@@ -16,6 +16,8 @@ final class Counters {
     final LongAdder undeliverable = new LongAdder();
     final LongAdder opened = new LongAdder();
     final LongAdder handshakesFailed = new LongAdder();
+    final LongAdder announcementsRefused = new LongAdder();
+    final java.util.concurrent.atomic.AtomicLong handshakesEvicted = new java.util.concurrent.atomic.AtomicLong();
     private final LongAdder[] closes = new LongAdder[CloseReason.values().length];
 
     Counters() {
@@ -37,6 +39,7 @@ final class Counters {
             }
         }
         return new NetworkStats(nodeId, connectedPeers, sent.sum(), resent.sum(), received.sum(), duplicates.sum(),
-                overflowDropped.sum(), undeliverable.sum(), opened.sum(), handshakesFailed.sum(), byReason);
+                overflowDropped.sum(), undeliverable.sum(), opened.sum(), handshakesFailed.sum(), byReason,
+                announcementsRefused.sum());
     }
 }

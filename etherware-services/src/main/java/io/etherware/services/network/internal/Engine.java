@@ -65,6 +65,8 @@ public final class Engine {
     private final RouteTable routes;
     private final ConcurrentHashMap<String, Peer> peers = new ConcurrentHashMap<>();
     private final Set<Connection> connections = ConcurrentHashMap.newKeySet();
+    /** Connections in their handshake, oldest first. */
+    private final java.util.concurrent.ConcurrentLinkedDeque<Connection> pending = new java.util.concurrent.ConcurrentLinkedDeque<>();
     private final List<Dialer> dialers = new CopyOnWriteArrayList<>();
     private final ConcurrentLinkedQueue<Profile> toReconcile = new ConcurrentLinkedQueue<>();
     private final ScheduledThreadPoolExecutor control;
@@ -82,7 +84,7 @@ public final class Engine {
         this.nodeId = kernel.nodeId();
         this.incarnation = nonZero(new SecureRandom().nextLong());
         this.networkTime = new NetworkTime(kernel.clock(), config.timeWindowSize(), NetworkTime.DEFAULT_MIN_DRIFT_SPAN);
-        this.routes = new RouteTable(kernel.registry());
+        this.routes = new RouteTable(kernel.registry(), config.announcePolicy(), counters.announcementsRefused);
         this.control = new ScheduledThreadPoolExecutor(1, task -> {
             Thread thread = new Thread(task, "etherware-net-" + nodeId + "-control");
             thread.setDaemon(true);
@@ -95,6 +97,17 @@ public final class Engine {
 
     /** Binds, starts accepting and dialing, and announces this node's profiles. */
     public void start() throws IOException {
+        var factory = config.connectionFactory();
+        var ownId = factory.localNodeId();
+        if (ownId.isPresent() && !ownId.get().equals(nodeId)) {
+            throw new IOException("this node's certificate names node '" + ownId.get() + "', but the node's id is '"
+                    + nodeId + "': give the node the key store made for it");
+        }
+        if (config.isInsecureBeyondLoopback()) {
+            log.warn("node {}: INSECURE: plain TCP beyond loopback (insecure=true): peers are not authenticated and"
+                    + " links are not encrypted; any host reaching {} can speak for any node", nodeId,
+                    config.listenAddress());
+        }
         // The codec's first use builds its serializers (tens of milliseconds): pay that now, not
         // on the first message of a control loop.
         Message warmUp = new Message(kernel.profile(), kernel.profile(), kernel.clock().epochNanos(), QoS.NONE,
@@ -197,9 +210,14 @@ public final class Engine {
         }
     }
 
-    /** A connection over {@code socket}, or null (socket closed) if there are too many or we close. */
+    /**
+     * A connection over {@code socket}, or null (socket closed) if we close or the established
+     * connections are at their limit. Connections in their handshake have a budget of their own:
+     * beyond it the oldest pending one is pushed out, so idle connections cannot lock honest
+     * peers out (an honest handshake takes milliseconds; a flood's connections wait for the timeout).
+     */
     Connection open(Socket socket, Dialer dialer) {
-        if (closed || connections.size() >= config.maxConnections()) {
+        if (closed || connections.size() - pending.size() >= config.maxConnections()) {
             log.warn("node {}: refusing a connection from {}: {}", nodeId, socket.getRemoteSocketAddress(),
                     closed ? "closing" : "maxConnections=" + config.maxConnections() + " reached");
             try {
@@ -211,7 +229,27 @@ public final class Engine {
         }
         var connection = new Connection(this, socket, dialer);
         connections.add(connection);
+        pending.addLast(connection);
+        while (pending.size() > config.maxPendingHandshakes()) {
+            Connection oldest = pending.pollFirst();
+            if (oldest == null) {
+                break;
+            }
+            long evicted = counters.handshakesEvicted.incrementAndGet();
+            if (evicted == 1 || evicted % 1000 == 0) {
+                log.warn("node {}: more than maxPendingHandshakes={} connections in their handshake; closing the"
+                        + " oldest ({} so far; a flood of idle connections?)", nodeId, config.maxPendingHandshakes(),
+                        evicted);
+            }
+            oldest.abort(CloseReason.HANDSHAKE_EVICTED, "pushed out by newer connections: maxPendingHandshakes="
+                    + config.maxPendingHandshakes() + " reached");
+        }
         return connection;
+    }
+
+    /** The connection finished its handshake (either way). */
+    void handshakeEnded(Connection connection) {
+        pending.remove(connection);
     }
 
     // ---------------------------------------------------------------- connections
@@ -281,6 +319,13 @@ public final class Engine {
         }
     }
 
+    /** The peer said BYE SHUTDOWN on its connection: its profiles are unrouted at once, not after the grace. */
+    void peerShutDown(Peer peer) {
+        log.info("node {}: node '{}' is shutting down: unrouting its profiles", nodeId, peer.nodeId);
+        routes.forget(peer);
+        signalStateChanged();
+    }
+
     /** Closes a connection off the calling thread (a sender must not wait for the close). */
     void closeLater(Connection connection, CloseReason reason, String detail) {
         try {
@@ -293,6 +338,7 @@ public final class Engine {
     /** The connection's socket is closed. */
     void connectionEnded(Connection connection, boolean wasActive, CloseReason reason) {
         connections.remove(connection);
+        pending.remove(connection);
         if (connection.dialer() != null) {
             connection.dialer().ended(connection.isActivated(), reason);
         }
@@ -303,10 +349,8 @@ public final class Engine {
 
     // ---------------------------------------------------------------- messages
 
-    /** Hands a message from a peer to the kernel (its reader thread), counting the relay hops. */
-    void deliverLocally(Message message, int hops) {
-        var reader = (ConnectionThread) Thread.currentThread();
-        reader.inboundHops = hops;
+    /** Hands a message from a peer, its origin set, to the kernel (the connection's reader thread). */
+    void deliverLocally(Message message) {
         try {
             kernel.send(message);
             counters.received.increment();
@@ -314,8 +358,6 @@ public final class Engine {
             counters.undeliverable.increment();
             log.warn("node {}: the kernel refused message {} to '{}' from the network: {}", nodeId,
                     message.messageId(), message.profile(), e.toString());
-        } finally {
-            reader.inboundHops = -1;
         }
     }
 
@@ -397,6 +439,12 @@ public final class Engine {
             for (Peer peer : peers.values()) {
                 Connection active = peer.active();
                 if (active != null) {
+                    long stalledNs = peer.unreadForNs(nowNs);
+                    if (stalledNs > config.heartbeatTimeoutNs()) {
+                        active.abort(CloseReason.NOT_READING, "node '" + peer.nodeId + "' acknowledged nothing of what"
+                                + " was written to it for " + TimeUnit.NANOSECONDS.toMillis(stalledNs) + " ms");
+                        continue;
+                    }
                     if (active.owesAck()) {
                         active.requestAck();
                     }

@@ -27,6 +27,11 @@ sealed interface Frame {
 
     /** Largest HELLO or RESUME: a peer that sends more before the handshake is not a peer. */
     int MAX_HANDSHAKE_FRAME_BYTES = 1024;
+    /**
+     * Smallest HELLO: type, magic, version, a node id of one byte (with its length), incarnation,
+     * clock, maxFrameBytes.
+     */
+    int MIN_HELLO_FRAME_BYTES = 1 + 4 + 2 + 2 + 1 + 8 + 8 + 4;
     /** Type byte plus DATA's seq, ack and hops. */
     int DATA_OVERHEAD_BYTES = 1 + 8 + 8 + 1;
 

@@ -39,10 +39,18 @@ final class FrameReader {
      * an HTTP request, a port scanner's probe, random bytes.
      */
     Frame.Hello readHello() throws IOException {
+        // Each part is checked as soon as it arrives: a first frame that cannot be a HELLO is
+        // refused at once, not when the handshake times out.
         byte[] head = new byte[5];
-        in.readFully(head);
+        in.readFully(head, 0, 4);
         int length = ByteBuffer.wrap(head).getInt();
-        if (length < 5 || length > Frame.MAX_HANDSHAKE_FRAME_BYTES || head[4] != Frame.HELLO) {
+        if (length < Frame.MIN_HELLO_FRAME_BYTES || length > Frame.MAX_HANDSHAKE_FRAME_BYTES) {
+            throw new ProtocolException(CloseReason.BAD_HANDSHAKE, "not an Etherware peer: the first bytes are "
+                    + HexFormat.ofDelimiter(" ").formatHex(head, 0, 4) + ", not the length of a HELLO frame ("
+                    + Frame.MIN_HELLO_FRAME_BYTES + " to " + Frame.MAX_HANDSHAKE_FRAME_BYTES + " bytes)");
+        }
+        head[4] = in.readByte();
+        if (head[4] != Frame.HELLO) {
             throw new ProtocolException(CloseReason.BAD_HANDSHAKE, "not an Etherware peer: the first bytes are "
                     + HexFormat.ofDelimiter(" ").formatHex(head) + ", not a HELLO frame");
         }

@@ -22,8 +22,8 @@ final class OutboundQueue {
         record Queued() implements Outcome {
         }
 
-        /** Queued, and {@code evicted}, less critical, was dropped to make room. */
-        record Evicted(Outgoing evicted) implements Outcome {
+        /** Queued, and {@code evicted}, less critical, were dropped to make room. */
+        record Evicted(List<Outgoing> evicted) implements Outcome {
         }
 
         /** Not queued: the queue is full of messages at least as critical. */
@@ -32,8 +32,10 @@ final class OutboundQueue {
     }
 
     private final List<ArrayDeque<Outgoing>> levels;
+    private final long[] levelBytes = new long[LEVELS];
     private final int capacity;
     private int size;
+    private long bytes;
 
     OutboundQueue(int capacity) {
         this.capacity = capacity;
@@ -45,24 +47,48 @@ final class OutboundQueue {
     }
 
     /**
-     * Queues {@code message}; when full, evicts the oldest message of the lowest level below the
-     * message's own, or refuses the message if there is none.
+     * Queues {@code message} if the queue then holds at most its capacity in messages and
+     * {@code maxBytes} in bytes; otherwise evicts the oldest messages of the lowest levels below the
+     * message's own to make room, or refuses the message if they would not make enough.
      */
-    Outcome offer(Outgoing message) {
+    Outcome offer(Outgoing message, long maxBytes) {
         int level = message.level();
-        if (size < capacity) {
-            levels.get(level).addLast(message);
-            size++;
+        int length = message.xml().length;
+        boolean fits = size < capacity && bytes + length <= maxBytes;
+        if (fits) {
+            add(message);
             return Outcome.QUEUED;
         }
+        long evictableBytes = 0;
+        int evictable = 0;
         for (int lower = 0; lower < level; lower++) {
-            if (!levels.get(lower).isEmpty()) {
-                Outgoing evicted = levels.get(lower).pollFirst();
-                levels.get(level).addLast(message);
-                return new Outcome.Evicted(evicted);
+            evictableBytes += levelBytes[lower];
+            evictable += levels.get(lower).size();
+        }
+        long bytesNeeded = bytes + length - maxBytes;
+        if (evictable == 0 || evictableBytes < bytesNeeded || length > maxBytes) {
+            return new Outcome.Full();
+        }
+        var evicted = new java.util.ArrayList<Outgoing>();
+        for (int lower = 0; lower < level; lower++) {
+            ArrayDeque<Outgoing> queue = levels.get(lower);
+            while (!queue.isEmpty() && (size >= capacity || bytes + length > maxBytes)) {
+                Outgoing victim = queue.pollFirst();
+                size--;
+                bytes -= victim.xml().length;
+                levelBytes[lower] -= victim.xml().length;
+                evicted.add(victim);
             }
         }
-        return new Outcome.Full();
+        add(message);
+        return new Outcome.Evicted(List.copyOf(evicted));
+    }
+
+    private void add(Outgoing message) {
+        levels.get(message.level()).addLast(message);
+        size++;
+        bytes += message.xml().length;
+        levelBytes[message.level()] += message.xml().length;
     }
 
     /** The most critical, oldest message, or null. */
@@ -71,6 +97,8 @@ final class OutboundQueue {
             Outgoing message = levels.get(level).pollFirst();
             if (message != null) {
                 size--;
+                bytes -= message.xml().length;
+                levelBytes[level] -= message.xml().length;
                 return message;
             }
         }
@@ -82,6 +110,8 @@ final class OutboundQueue {
         for (Outgoing message : taken.reversed()) {
             levels.get(message.level()).addFirst(message);
             size++;
+            bytes += message.xml().length;
+            levelBytes[message.level()] += message.xml().length;
         }
     }
 
@@ -97,6 +127,11 @@ final class OutboundQueue {
 
     int size() {
         return size;
+    }
+
+    /** Bytes of the encoded messages waiting. */
+    long bytes() {
+        return bytes;
     }
 
     boolean isEmpty() {

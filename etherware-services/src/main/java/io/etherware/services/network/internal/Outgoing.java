@@ -7,8 +7,7 @@ import io.etherware.core.message.Message;
  *
  * @param message the message
  * @param hops    0 when it was sent on this node, else the relays it went through
- * @param xml     its encoding if the sender already made it (a direct write that found the
- *                writer busy), else null: the writer encodes it
+ * @param xml     its encoding, made by the sending thread when it was handed over
  */
 record Outgoing(Message message, int hops, byte[] xml) {
 

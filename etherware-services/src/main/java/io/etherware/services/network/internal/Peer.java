@@ -49,7 +49,11 @@ final class Peer {
     private boolean writerWaitsForToken;
     /** The queue's size, readable without the lock as a hint. */
     private volatile int queuedHint;
+    /** Bytes of the messages in flight. */
+    private long inFlightBytes;
     private volatile long ackedCount;
+    /** Since when something written is unacknowledged with no acknowledgement progress; 0: nothing. */
+    private volatile long unackedSinceNs;
     private volatile Connection active;
     private long remoteIncarnation;
     private long downSinceNs;
@@ -82,13 +86,15 @@ final class Peer {
      * undeliverable notice to its sender.
      */
     void enqueue(Message message) {
-        int hops = ConnectionThread.hopsOfCurrentSend();
+        // A message that came from the network is relayed: one more hop than it had made.
+        int hops = message.origin() == null ? 0 : message.origin().hops() + 1;
         if (hops > engine.config().maxHops()) {
             throw new IllegalStateException("message " + message.messageId() + " was already relayed " + (hops - 1)
                     + " times (maxHops=" + engine.config().maxHops() + "): the nodes' routes disagree");
         }
         Connection direct = active;
-        byte[] xml = direct != null && queuedHint == 0 && !writerBusy ? encode(message, direct) : null;
+        // Encoded here, on the sender's thread: its size counts against the peer's byte bound.
+        byte[] xml = encode(message, direct);
         var outgoing = new Outgoing(message, hops, xml);
         OutboundQueue.Outcome outcome = null;
         InFlight written = null;
@@ -101,14 +107,18 @@ final class Peer {
                 throw new IllegalStateException("node '" + nodeId + "' is unreachable: disconnected for more than "
                         + TimeUnit.NANOSECONDS.toMillis(engine.config().peerDownGraceNs()) + " ms");
             }
-            if (xml != null && active == direct && !writerBusy && queue.isEmpty() && !direct.requests.mustPrecedeMessages()
-                    && inFlight.size() < engine.config().windowMessages()
+            long maxBytes = engine.config().maxQueuedBytesPerPeer();
+            if (direct != null && active == direct && !writerBusy && queue.isEmpty()
+                    && !direct.requests.mustPrecedeMessages() && inFlight.size() < engine.config().windowMessages()
+                    && inFlightBytes + xml.length <= maxBytes
                     && direct.fitsDirectWrite(xml.length + Frame.DATA_OVERHEAD_BYTES)) {
                 writerBusy = true;
                 written = new InFlight(nextSeq++, outgoing, xml);
+                markUnacked();
                 inFlight.addLast(written);
+                inFlightBytes += xml.length;
             } else {
-                outcome = queue.offer(outgoing);
+                outcome = queue.offer(outgoing, maxBytes - inFlightBytes);
                 queuedHint = queue.size();
                 if (!(outcome instanceof OutboundQueue.Outcome.Full)) {
                     work.signal();
@@ -122,21 +132,31 @@ final class Peer {
             return;
         }
         switch (outcome) {
-            case OutboundQueue.Outcome.Evicted evicted -> engine.dropped(evicted.evicted().message(), nodeId,
-                    "evicted by a more critical message from the full queue to node '" + nodeId + "'");
+            case OutboundQueue.Outcome.Evicted evicted -> {
+                for (Outgoing each : evicted.evicted()) {
+                    engine.dropped(each.message(), nodeId, "evicted by a more critical message from the full queue"
+                            + " to node '" + nodeId + "'");
+                }
+            }
             case OutboundQueue.Outcome.Full full -> {
+                String why = "the queue to node '" + nodeId + "' is full (queueCapacity="
+                        + engine.config().queueCapacity() + " messages, maxQueuedBytesPerPeer="
+                        + engine.config().maxQueuedBytesPerPeer() + " bytes with those in flight) of messages at"
+                        + " least as critical as this one";
                 if (message.qos().criticality().compareTo(Criticality.LOW) <= 0) {
-                    engine.dropped(message, nodeId, "the queue to node '" + nodeId + "' is full");
+                    engine.dropped(message, nodeId, why);
                 } else {
-                    throw new IllegalStateException("the queue to node '" + nodeId + "' is full of "
-                            + engine.config().queueCapacity() + " messages at least as critical as this one");
+                    throw new IllegalStateException(why);
                 }
             }
             default -> { }
         }
     }
 
-    /** The message's XML for {@code connection}, or an exception the kernel reports to the sender. */
+    /**
+     * The message's XML, within the frame limit of {@code connection}'s peer (or this node's own
+     * limit when none is connected), or an exception the kernel reports to the sender.
+     */
     private byte[] encode(Message message, Connection connection) {
         byte[] xml;
         try {
@@ -144,9 +164,10 @@ final class Peer {
         } catch (MessageFormatException e) {
             throw new IllegalStateException("message " + message.messageId() + " does not encode: " + e.getMessage(), e);
         }
-        if (xml.length + Frame.DATA_OVERHEAD_BYTES > connection.peerMaxFrameBytes()) {
+        int limit = connection != null ? connection.peerMaxFrameBytes() : engine.config().maxFrameBytes();
+        if (xml.length + Frame.DATA_OVERHEAD_BYTES > limit) {
             throw new IllegalStateException("message " + message.messageId() + " is a frame of "
-                    + (xml.length + Frame.DATA_OVERHEAD_BYTES) + " bytes, over the " + connection.peerMaxFrameBytes()
+                    + (xml.length + Frame.DATA_OVERHEAD_BYTES) + " bytes, over the " + limit
                     + " bytes node '" + nodeId + "' accepts");
         }
         return xml;
@@ -231,11 +252,20 @@ final class Peer {
                 remoteIncarnation = hello.incarnation();
                 List<InFlight> lost = List.of();
                 if (theirs.knownStreamId() == streamId) {
+                    String refusal = null;
                     if (theirs.receivedCount() > nextSeq) {
                         // The streams disagree (a restart raced a second connection): start ours
                         // afresh under a new id, which the peer adopts on the next connection.
-                        String refusal = "the peer claims " + theirs.receivedCount() + " messages of stream "
+                        refusal = "the peer claims " + theirs.receivedCount() + " messages of stream "
                                 + Long.toHexString(streamId) + ", only " + nextSeq + " were sent";
+                    } else if (theirs.receivedCount() < ackedCount) {
+                        // Fewer than it acknowledged before: those are released and cannot be sent
+                        // again, so resuming would leave a gap the peer never gets past (a
+                        // connection in its name acknowledged them: an impersonator, or a bug).
+                        refusal = "the peer claims " + theirs.receivedCount() + " messages of stream "
+                                + Long.toHexString(streamId) + ", but had acknowledged " + ackedCount;
+                    }
+                    if (refusal != null) {
                         return new Activation(false, candidate, resetStream(), false, refusal);
                     }
                     releaseInFlightBelow(theirs.receivedCount());
@@ -246,6 +276,8 @@ final class Peer {
                     // fate; the peer starts our stream from 0 (it adopts its id from our RESUME).
                     lost = List.copyOf(inFlight);
                     inFlight.clear();
+                    inFlightBytes = 0;
+                    unackedSinceNs = 0;
                     nextSeq = 0;
                     ackedCount = 0;
                     candidate.requests.resend(List.of());
@@ -260,6 +292,7 @@ final class Peer {
                 }
                 active = candidate;
                 expired = false;
+                unackedSinceNs = inFlight.isEmpty() ? 0 : engine.nowNs();
                 candidate.requests.announce(engine.announceBody());
                 work.signalAll();
                 return new Activation(true, loser, lost, restarted, null);
@@ -364,9 +397,13 @@ final class Peer {
                 return null;
             }
             var assigned = new ArrayList<InFlight>(encoded.size());
+            if (!encoded.isEmpty()) {
+                markUnacked();
+            }
             for (int i = 0; i < encoded.size(); i++) {
                 var entry = new InFlight(nextSeq++, encoded.get(i), xml.get(i));
                 inFlight.addLast(entry);
+                inFlightBytes += entry.xml().length;
                 assigned.add(entry);
             }
             return assigned;
@@ -376,25 +413,54 @@ final class Peer {
     }
 
     private void releaseInFlightBelow(long count) {
+        boolean released = false;
         while (!inFlight.isEmpty() && inFlight.peekFirst().seq() < count) {
-            inFlight.pollFirst();
+            inFlightBytes -= inFlight.pollFirst().xml().length;
+            released = true;
         }
+        if (inFlight.isEmpty()) {
+            unackedSinceNs = 0;
+        } else if (released) {
+            unackedSinceNs = engine.nowNs();
+        }
+    }
+
+    /** Something is about to be in flight (lock held): the not-reading clock starts if it was empty. */
+    private void markUnacked() {
+        if (inFlight.isEmpty()) {
+            unackedSinceNs = engine.nowNs();
+        }
+    }
+
+    /**
+     * How long the peer has read nothing of what was written to it: no acknowledgement progress
+     * while messages are in flight, or a write of the active connection blocked.
+     */
+    long unreadForNs(long nowNs) {
+        Connection connection = active;
+        long since = unackedSinceNs;
+        long unacked = since == 0 ? 0 : nowNs - since;
+        return Math.max(unacked, connection == null ? 0 : connection.writeBlockedForNs(nowNs));
     }
 
     /** The peer's kernel has the first {@code count} messages of the stream. */
     void onAck(Connection connection, long count) throws ProtocolException {
-        if (count <= ackedCount) {
+        if (count == ackedCount) {
             return;
         }
         List<InFlight> lost;
         String error;
         lock.lock();
         try {
-            if (active != connection) {
+            if (active != connection || count == ackedCount) {
                 return;
             }
             if (count > nextSeq) {
                 error = "acknowledgement of " + count + " messages, only " + nextSeq + " were sent";
+                lost = resetStream();
+            } else if (count < ackedCount) {
+                // Acknowledgements are cumulative: one that goes back contradicts what was released.
+                error = "acknowledgement of " + count + " messages after " + ackedCount + " were acknowledged";
                 lost = resetStream();
             } else {
                 error = null;
@@ -436,6 +502,7 @@ final class Peer {
                 InFlight entry = each.next();
                 if (entry.seq() == seq) {
                     each.remove();
+                    inFlightBytes -= entry.xml().length;
                     return entry.outgoing();
                 }
             }
@@ -534,6 +601,8 @@ final class Peer {
     private List<InFlight> resetStream() {
         List<InFlight> lost = List.copyOf(inFlight);
         inFlight.clear();
+        inFlightBytes = 0;
+        unackedSinceNs = 0;
         streamId = engine.newStreamId();
         nextSeq = 0;
         ackedCount = 0;

@@ -6,12 +6,15 @@ import io.etherware.core.kernel.ProfileResolutionException;
 import io.etherware.core.kernel.RemoteRoute;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
+import io.etherware.services.network.AnnouncePolicy;
 import java.util.HashMap;
 import java.util.HashSet;
+import java.util.LinkedHashMap;
+import java.util.LinkedHashSet;
 import java.util.List;
 import java.util.Map;
 import java.util.Set;
-import java.util.TreeMap;
+import java.util.concurrent.atomic.LongAdder;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -19,9 +22,14 @@ import org.slf4j.LoggerFactory;
  * The profiles other nodes announced, and the {@link RemoteRoute}s registered for them in this
  * node's registry so that {@code send} to such a profile reaches the node hosting it.
  *
- * <p>Conflicts are resolved the same way on every node: a local component wins over any
- * announcement (the registry refuses the route, and a component added later displaces it); among
- * remote nodes announcing the same profile, the lowest node id wins. Both are logged.
+ * <p>What a peer may announce: its own node profile ({@code etherware.node[id=<its id>]}) and no
+ * other node's, and the application profiles the {@link AnnouncePolicy} allows it; anything else
+ * is refused, counted and logged. Conflicts: a local component wins over any announcement (the
+ * registry refuses the route, and a component added later displaces it); among nodes announcing
+ * the same profile, the first to announce it keeps it until it withdraws it (or is gone), and a
+ * later claim waits in line, logged, never settled by node-id order: a newcomer cannot draw
+ * traffic away from the node that serves it. A migration is such a hand-over: the source keeps
+ * the route (and relays) until it withdraws the profile, then the target has it.
  *
  * <p>Thread-safety: changes are serialized on this object. Lock order: this, then the registry
  * (whose listener must therefore never call back in here; the messenger queues such work).
@@ -30,19 +38,29 @@ final class RouteTable {
 
     private static final Logger log = LoggerFactory.getLogger(RouteTable.class);
 
+    private static final String NODE_ROLE = "etherware.node";
+
     private final ProfileRegistry registry;
+    private final AnnouncePolicy policy;
+    private final LongAdder refused;
     private final Map<Profile, ProfileRoute> routes = new HashMap<>();
     private final Map<String, Set<Profile>> byPeer = new HashMap<>();
+    private long refusalsLogged;
 
-    RouteTable(ProfileRegistry registry) {
+    /**
+     * @param refused counts the announced profiles refused
+     */
+    RouteTable(ProfileRegistry registry, AnnouncePolicy policy, LongAdder refused) {
         this.registry = registry;
+        this.policy = policy;
+        this.refused = refused;
     }
 
     /** The route to one remote profile: it follows whichever node currently hosts it. */
     static final class ProfileRoute implements RemoteRoute {
         final Profile profile;
-        /** Nodes announcing the profile, by id; guarded by the table. */
-        final TreeMap<String, Peer> hosts = new TreeMap<>();
+        /** Nodes announcing the profile, in the order they claimed it; guarded by the table. */
+        final LinkedHashMap<String, Peer> hosts = new LinkedHashMap<>();
         volatile Peer owner;
         /** Whether the registry holds this route; guarded by the table. */
         boolean registered;
@@ -70,7 +88,19 @@ final class RouteTable {
 
     /** {@code peer} hosts exactly {@code profiles} now (an ANNOUNCE replaces the previous one). */
     synchronized void announce(Peer peer, List<Profile> profiles) {
-        Set<Profile> now = new HashSet<>(profiles);
+        Set<Profile> now = new LinkedHashSet<>();
+        for (Profile profile : profiles) {
+            String refusal = refusal(peer.nodeId, profile);
+            if (refusal == null) {
+                now.add(profile);
+            } else {
+                refused.increment();
+                if (refusalsLogged++ < 100 || refusalsLogged % 10_000 == 0) {
+                    log.warn("node '{}' announced '{}': refused, {} ({} refusals so far)", peer.nodeId, profile,
+                            refusal, refusalsLogged);
+                }
+            }
+        }
         Set<Profile> before = byPeer.getOrDefault(peer.nodeId, Set.of());
         for (Profile profile : before) {
             if (!now.contains(profile)) {
@@ -82,6 +112,11 @@ final class RouteTable {
         for (Profile profile : now) {
             if (!before.contains(profile)) {
                 ProfileRoute route = routes.computeIfAbsent(profile, ProfileRoute::new);
+                if (!route.hosts.isEmpty()) {
+                    log.info("profile '{}' announced by node '{}' stays routed to node '{}', which announced it first;"
+                            + " the claim waits until that node withdraws it", profile, peer.nodeId,
+                            route.hosts.firstEntry().getKey());
+                }
                 route.hosts.put(peer.nodeId, peer);
                 sync(route);
             }
@@ -91,6 +126,15 @@ final class RouteTable {
         } else {
             byPeer.put(peer.nodeId, now);
         }
+    }
+
+    /** Why {@code nodeId} may not announce {@code profile}, or null if it may. */
+    private String refusal(String nodeId, Profile profile) {
+        if (profile.role().equals(NODE_ROLE)) {
+            return profile.equals(Profile.of(NODE_ROLE, "id", nodeId)) ? null
+                    : "a node may announce only its own node profile, " + Profile.of(NODE_ROLE, "id", nodeId);
+        }
+        return policy.allows(nodeId, profile) ? null : "this node's announce policy does not allow it from that node";
     }
 
     /** The peer is gone for good (grace expired, or the messenger closes): unroute its profiles. */
@@ -136,12 +180,9 @@ final class RouteTable {
         }
         Peer first = route.hosts.firstEntry().getValue();
         if (route.owner != first) {
-            if (route.hosts.size() > 1) {
-                log.warn("profile '{}' is announced by nodes {}: routing to '{}', the lowest node id", route.profile,
-                        route.hosts.keySet(), first.nodeId);
-            }
             route.owner = first;
         }
+
         if (!route.registered) {
             try {
                 registry.registerRemote(route.profile, route);

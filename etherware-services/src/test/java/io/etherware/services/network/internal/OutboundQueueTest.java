@@ -21,7 +21,11 @@ class OutboundQueueTest {
 
     private static Outgoing message(Criticality criticality) {
         return new Outgoing(new Message(Profile.of("x"), null, 0, QoS.of(criticality), new Text(criticality.name()),
-                new MessageId("a", sequence++), null), 0, null);
+                new MessageId("a", sequence++), null), 0, new byte[100]);
+    }
+
+    private static Outgoing sized(Criticality criticality, int bytes) {
+        return new Outgoing(message(criticality).message(), 0, new byte[bytes]);
     }
 
     private static List<Outgoing> drain(OutboundQueue queue) {
@@ -43,7 +47,7 @@ class OutboundQueueTest {
         Outgoing high2 = message(Criticality.HIGH);
         Outgoing low2 = message(Criticality.LOW);
         for (Outgoing each : List.of(low1, high1, none, middle, high2, low2)) {
-            assertSame(OutboundQueue.Outcome.QUEUED, queue.offer(each));
+            assertSame(OutboundQueue.Outcome.QUEUED, queue.offer(each, Long.MAX_VALUE));
         }
         assertEquals(List.of(high1, high2, middle, low1, low2, none), drain(queue));
         assertNull(queue.poll());
@@ -55,26 +59,26 @@ class OutboundQueueTest {
         Outgoing low = message(Criticality.LOW);
         Outgoing none1 = message(Criticality.NONE);
         Outgoing none2 = message(Criticality.NONE);
-        queue.offer(low);
-        queue.offer(none1);
-        queue.offer(none2);
+        queue.offer(low, Long.MAX_VALUE);
+        queue.offer(none1, Long.MAX_VALUE);
+        queue.offer(none2, Long.MAX_VALUE);
         Outgoing high = message(Criticality.HIGH);
-        assertEquals(new OutboundQueue.Outcome.Evicted(none1), queue.offer(high), "NONE goes first, oldest first");
+        assertEquals(new OutboundQueue.Outcome.Evicted(List.of(none1)), queue.offer(high, Long.MAX_VALUE), "NONE goes first, oldest first");
         Outgoing middle = message(Criticality.MIDDLE);
-        assertEquals(new OutboundQueue.Outcome.Evicted(none2), queue.offer(middle));
-        assertEquals(new OutboundQueue.Outcome.Evicted(low), queue.offer(message(Criticality.HIGH)));
+        assertEquals(new OutboundQueue.Outcome.Evicted(List.of(none2)), queue.offer(middle, Long.MAX_VALUE));
+        assertEquals(new OutboundQueue.Outcome.Evicted(List.of(low)), queue.offer(message(Criticality.HIGH), Long.MAX_VALUE));
         assertEquals(3, queue.size());
     }
 
     @Test
     void shouldRefuseAMessageWhenEverythingQueuedIsAtLeastAsCritical() {
         var queue = new OutboundQueue(2);
-        queue.offer(message(Criticality.HIGH));
-        queue.offer(message(Criticality.MIDDLE));
-        assertInstanceOf(OutboundQueue.Outcome.Full.class, queue.offer(message(Criticality.MIDDLE)));
-        assertInstanceOf(OutboundQueue.Outcome.Full.class, queue.offer(message(Criticality.LOW)));
-        assertInstanceOf(OutboundQueue.Outcome.Evicted.class, queue.offer(message(Criticality.HIGH)));
-        assertInstanceOf(OutboundQueue.Outcome.Full.class, queue.offer(message(Criticality.HIGH)));
+        queue.offer(message(Criticality.HIGH), Long.MAX_VALUE);
+        queue.offer(message(Criticality.MIDDLE), Long.MAX_VALUE);
+        assertInstanceOf(OutboundQueue.Outcome.Full.class, queue.offer(message(Criticality.MIDDLE), Long.MAX_VALUE));
+        assertInstanceOf(OutboundQueue.Outcome.Full.class, queue.offer(message(Criticality.LOW), Long.MAX_VALUE));
+        assertInstanceOf(OutboundQueue.Outcome.Evicted.class, queue.offer(message(Criticality.HIGH), Long.MAX_VALUE));
+        assertInstanceOf(OutboundQueue.Outcome.Full.class, queue.offer(message(Criticality.HIGH), Long.MAX_VALUE));
     }
 
     @Test
@@ -83,11 +87,33 @@ class OutboundQueueTest {
         Outgoing first = message(Criticality.HIGH);
         Outgoing second = message(Criticality.HIGH);
         Outgoing third = message(Criticality.HIGH);
-        queue.offer(first);
-        queue.offer(second);
-        queue.offer(third);
+        queue.offer(first, Long.MAX_VALUE);
+        queue.offer(second, Long.MAX_VALUE);
+        queue.offer(third, Long.MAX_VALUE);
         List<Outgoing> taken = List.of(queue.poll(), queue.poll());
         queue.pushBack(taken);
         assertEquals(List.of(first, second, third), drain(queue));
+    }
+
+    @Test
+    void shouldEvictLessCriticalMessagesUntilTheBytesFitAndRefuseWhenTheyCannot() {
+        var queue = new OutboundQueue(100);
+        Outgoing low1 = sized(Criticality.LOW, 400);
+        Outgoing low2 = sized(Criticality.LOW, 400);
+        Outgoing middle = sized(Criticality.MIDDLE, 100);
+        assertSame(OutboundQueue.Outcome.QUEUED, queue.offer(low1, 1000));
+        assertSame(OutboundQueue.Outcome.QUEUED, queue.offer(low2, 1000));
+        assertSame(OutboundQueue.Outcome.QUEUED, queue.offer(middle, 1000));
+        assertEquals(900, queue.bytes());
+
+        Outgoing high = sized(Criticality.HIGH, 700);
+        assertEquals(new OutboundQueue.Outcome.Evicted(List.of(low1, low2)), queue.offer(high, 1000),
+                "both LOW messages go to make 700 bytes of room, the MIDDLE one stays");
+        assertEquals(800, queue.bytes());
+        assertInstanceOf(OutboundQueue.Outcome.Full.class, queue.offer(sized(Criticality.HIGH, 400), 1000),
+                "only the MIDDLE message of 100 bytes is evictable: not enough for 200");
+        assertInstanceOf(OutboundQueue.Outcome.Full.class, queue.offer(sized(Criticality.LOW, 300), 1000));
+        assertEquals(List.of(high, middle), drain(queue));
+        assertEquals(0, queue.bytes());
     }
 }
