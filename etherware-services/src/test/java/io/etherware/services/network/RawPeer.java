@@ -42,11 +42,21 @@ final class RawPeer implements AutoCloseable {
     private final DataInputStream in;
 
     RawPeer(InetSocketAddress node) throws IOException {
-        socket = new Socket();
-        socket.connect(node, 10_000);
+        this(connected(node));
+    }
+
+    /** A raw peer over a socket already connected (e.g. a TLS one). */
+    RawPeer(Socket connected) throws IOException {
+        socket = connected;
         socket.setSoTimeout(30_000);
         out = new DataOutputStream(socket.getOutputStream());
         in = new DataInputStream(socket.getInputStream());
+    }
+
+    private static Socket connected(InetSocketAddress node) throws IOException {
+        var socket = new Socket();
+        socket.connect(node, 10_000);
+        return socket;
     }
 
     void raw(byte[] bytes) throws IOException {

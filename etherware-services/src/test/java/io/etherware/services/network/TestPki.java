@@ -29,6 +29,25 @@ final class TestPki {
     private final Path trustStore;
     private final ConcurrentHashMap<String, Path> nodes = new ConcurrentHashMap<>();
 
+    private static TestPki shared;
+    private static TestPki sharedRogue;
+
+    /** The deployment most tests share (made once per test JVM: keytool is slow to start). */
+    static synchronized TestPki deployment() {
+        if (shared == null) {
+            shared = new TestPki("deployment-ca");
+        }
+        return shared;
+    }
+
+    /** Another deployment, which {@link #deployment()} does not trust. */
+    static synchronized TestPki rogue() {
+        if (sharedRogue == null) {
+            sharedRogue = new TestPki("rogue-ca");
+        }
+        return sharedRogue;
+    }
+
     /** A new CA in a fresh temporary directory. */
     TestPki(String caName) {
         try {
@@ -96,7 +115,10 @@ final class TestPki {
         for (Object argument : arguments) {
             command.add(argument.toString());
         }
-        command.addAll(List.of("-storepass", PASS, "-keypass", PASS));
+        command.addAll(List.of("-storepass", PASS));
+        if (!arguments[0].equals("-exportcert")) {
+            command.addAll(List.of("-keypass", PASS));
+        }
         Process process = new ProcessBuilder(command).redirectErrorStream(true).start();
         try {
             if (!process.waitFor(60, TimeUnit.SECONDS)) {
