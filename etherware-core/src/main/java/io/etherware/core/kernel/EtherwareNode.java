@@ -320,6 +320,11 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
     }
 
     @Override
+    public long queuedBytesFrom(String viaNodeId) {
+        return core.queuedBytesFrom(viaNodeId);
+    }
+
+    @Override
     public String toString() {
         return "EtherwareNode[" + core.nodeId() + "]";
     }

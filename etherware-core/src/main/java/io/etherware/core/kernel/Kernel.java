@@ -173,4 +173,14 @@ public interface Kernel {
 
     /** The node's counters now. */
     NodeStats stats();
+
+    /**
+     * Bytes of messages that arrived through node {@code viaNodeId} (their
+     * {@link io.etherware.core.message.Origin#wireBytes()}) and wait in this node's queues, not
+     * yet handled or passed on: what a peer has made this node hold, so the network layer can
+     * stop reading from a peer that floods it. The default implementation does not count.
+     */
+    default long queuedBytesFrom(String viaNodeId) {
+        return 0;
+    }
 }

@@ -20,8 +20,10 @@ import java.util.Objects;
  * @param hops      how many nodes relayed it between {@code nodeId} and this node
  * @param authenticated whether the connection it arrived through authenticated its peer (TLS); a
  *                  plain-TCP connection has only the peer's word for its node id
+ * @param wireBytes the size it arrived with (its XML), which the kernel counts against
+ *                  {@code viaNodeId} while the message waits in its queues (0: not counted)
  */
-public record Origin(String nodeId, String viaNodeId, int hops, boolean authenticated) {
+public record Origin(String nodeId, String viaNodeId, int hops, boolean authenticated, int wireBytes) {
 
     public Origin {
         Objects.requireNonNull(nodeId, "nodeId");
@@ -29,10 +31,18 @@ public record Origin(String nodeId, String viaNodeId, int hops, boolean authenti
         if (hops < 0) {
             throw new IllegalArgumentException("hops=" + hops + " must be >= 0");
         }
+        if (wireBytes < 0) {
+            throw new IllegalArgumentException("wireBytes=" + wireBytes + " must be >= 0");
+        }
         if (hops == 0 && !nodeId.equals(viaNodeId)) {
             throw new IllegalArgumentException("a message received directly (hops=0) comes from its via node: nodeId='"
                     + nodeId + "', viaNodeId='" + viaNodeId + "'");
         }
+    }
+
+    /** An origin whose size is not counted. */
+    public Origin(String nodeId, String viaNodeId, int hops, boolean authenticated) {
+        this(nodeId, viaNodeId, hops, authenticated, 0);
     }
 
     /** A message received directly from {@code nodeId}. */

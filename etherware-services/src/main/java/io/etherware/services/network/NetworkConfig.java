@@ -35,8 +35,7 @@ import java.util.Objects;
  * @param timeProbeIntervalNs       NetworkTime exchanges per peer, after the burst at connection
  * @param timeProbeBurst            exchanges in quick succession when a connection opens
  * @param timeWindowSize            exchanges NetworkTime's filter looks at
- * @param maxConnections            connections, open or in handshake, beyond which new ones are
- *                                  refused
+ * @param maxConnections            established connections beyond which new ones are refused
  * @param maxHops                   relays a message may make through nodes whose routes point on
  *                                  (during a migration) before it is undeliverable
  * @param maxPendingHandshakes      connections in their handshake at once; a new one beyond this
@@ -46,6 +45,9 @@ import java.util.Objects;
  * @param maxQueuedBytesPerPeer     bytes of encoded messages waiting for a peer or written and not
  *                                  yet acknowledged by it; beyond this, messages to it are shed or
  *                                  refused like those beyond {@code queueCapacity}
+ * @param maxInboundBytesPerPeer    bytes of a peer's messages this node holds in its queues (not yet
+ *                                  handled or passed on) beyond which it stops reading from that
+ *                                  peer until they drain: TCP then slows the peer down
  * @param announcePolicy            which application profiles a peer may announce here
  * @param insecure                  whether plain, unauthenticated links beyond loopback were chosen
  *                                  on purpose ({@link Builder#insecure}); without it a messenger
@@ -59,7 +61,7 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
                             long reconnectMaxBackoffNs, double reconnectJitter, long peerDownGraceNs,
                             long timeProbeIntervalNs, int timeProbeBurst, int timeWindowSize, int maxConnections,
                             int maxHops, int maxPendingHandshakes, long maxQueuedBytesPerPeer,
-                            AnnouncePolicy announcePolicy, boolean insecure) {
+                            long maxInboundBytesPerPeer, AnnouncePolicy announcePolicy, boolean insecure) {
 
     /** Default {@link #maxFrameBytes}: 1 MiB. */
     public static final int DEFAULT_MAX_FRAME_BYTES = 1 << 20;
@@ -97,6 +99,7 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
         requireRange("maxHops", maxHops, 0, 32);
         requireRange("maxPendingHandshakes", maxPendingHandshakes, 1, 100_000);
         requireRange("maxQueuedBytesPerPeer", maxQueuedBytesPerPeer, 2L * maxFrameBytes, 1L << 40);
+        requireRange("maxInboundBytesPerPeer", maxInboundBytesPerPeer, 2L * maxFrameBytes, 1L << 40);
         Objects.requireNonNull(announcePolicy, "announcePolicy=null: use AnnouncePolicy.any()");
         if (!connectionFactory.authenticatesPeers() && !insecure) {
             requireLoopback("listenAddress", listenAddress);
@@ -155,7 +158,7 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
      * 2 s, dial within 2 s; redial after 50 ms doubling to 5 s, with 20 % jitter; a peer down for
      * 10 s loses its messages and routes; NetworkTime burst of 8 exchanges, then one per second,
      * filter window {@value NetworkTime#DEFAULT_WINDOW_SIZE}; 64 connections, of which 16 in their
-     * handshake; 4 relays; 64 MiB queued or unacknowledged per peer; any peer may announce any
+     * handshake; 4 relays; 64 MiB queued or unacknowledged per peer, 64 MiB of a peer's messages held here; any peer may announce any
      * application profile; not insecure (plain TCP only on loopback).
      *
      * <p>Not thread-safe; use it on one thread.
@@ -183,6 +186,7 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
         private int maxHops = 4;
         private int maxPendingHandshakes = 16;
         private long maxQueuedBytesPerPeer = 64L << 20;
+        private long maxInboundBytesPerPeer = 64L << 20;
         private AnnouncePolicy announcePolicy = AnnouncePolicy.any();
         private boolean insecure;
 
@@ -303,6 +307,12 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
             return this;
         }
 
+        /** Bytes of one peer's messages held in this node's queues before it stops reading from it. */
+        public Builder maxInboundBytesPerPeer(long value) {
+            maxInboundBytesPerPeer = value;
+            return this;
+        }
+
         /** Which application profiles peers may announce to this node. */
         public Builder announcePolicy(AnnouncePolicy value) {
             announcePolicy = value;
@@ -329,7 +339,7 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
                     queueCapacity, windowMessages, heartbeatIntervalNs, heartbeatTimeoutNs, handshakeTimeoutNs,
                     connectTimeoutNs, reconnectInitialBackoffNs, reconnectMaxBackoffNs, reconnectJitter, peerDownGraceNs,
                     timeProbeIntervalNs, timeProbeBurst, timeWindowSize, maxConnections, maxHops, maxPendingHandshakes,
-                    maxQueuedBytesPerPeer, announcePolicy, insecure);
+                    maxQueuedBytesPerPeer, maxInboundBytesPerPeer, announcePolicy, insecure);
         }
     }
 }

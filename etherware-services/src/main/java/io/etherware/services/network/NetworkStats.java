@@ -27,11 +27,13 @@ import java.util.Map;
  *                             {@link CloseReason#isBadInput()})
  * @param announcementsRefused profiles peers announced that this node refused: another node's node
  *                             profile, or one the {@link AnnouncePolicy} does not allow
+ * @param inboundPauses        times this node stopped reading from a peer because its messages
+ *                             held here reached {@link NetworkConfig#maxInboundBytesPerPeer()}
  */
 public record NetworkStats(String nodeId, int connectedPeers, long messagesSent, long messagesResent,
                            long messagesReceived, long duplicatesDropped, long overflowDropped, long undeliverable,
                            long connectionsOpened, long handshakesFailed, Map<CloseReason, Long> closes,
-                           long announcementsRefused) {
+                           long announcementsRefused, long inboundPauses) {
 
     public NetworkStats {
         closes = Map.copyOf(closes);

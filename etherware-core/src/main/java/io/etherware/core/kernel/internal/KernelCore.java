@@ -19,6 +19,7 @@ import io.etherware.core.message.Contents;
 import io.etherware.core.message.ContentsTypes;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageId;
+import io.etherware.core.message.Origin;
 import io.etherware.core.message.Profile;
 import io.etherware.core.message.Tick;
 import io.etherware.core.scheduler.Job;
@@ -30,6 +31,7 @@ import java.util.Comparator;
 import java.util.List;
 import java.util.Objects;
 import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.ExecutionException;
 import java.util.concurrent.TimeUnit;
@@ -78,6 +80,8 @@ public final class KernelCore implements Kernel, JobRunner {
     private final RequestTable requests;
     private final AtomicLong messageSequence = new AtomicLong();
     private final AtomicLong jobSequence = new AtomicLong();
+    /** Bytes of queued messages from the network, by the node they came through. */
+    private final ConcurrentHashMap<String, LongAdder> inboundBytes = new ConcurrentHashMap<>();
     /** Registered components in registration order. */
     private final List<LocalShell> shells = new CopyOnWriteArrayList<>();
     /** Every component ever added, for the counters. */
@@ -177,6 +181,7 @@ public final class KernelCore implements Kernel, JobRunner {
             deliverRemote(message, shell.forwardRoute()); // relocated, and nothing of it is queued here
             return;
         }
+        countInbound(message, +1);
         long sequence = jobSequence.getAndIncrement();
         if (shell.pens(message)) {
             sequence += PEN_OFFSET;
@@ -184,12 +189,31 @@ public final class KernelCore implements Kernel, JobRunner {
         Job job = new Job(message, shell.name(), shell, sequence, releaseNs);
         if (!scheduler.submit(job)) {
             shell.leaveQueue();
+            countInbound(message, -1);
             discard(job);
         }
         ArrivalPen pen = shell.pen();
         if (pen != null && pen.isArrival(message)) {
             pen.arrived(); // after the submission: the admission's hand-over queues behind it
         }
+    }
+
+    /**
+     * Counts the bytes of a message from the network while it is a queued job of a component:
+     * added when the job is made, removed when it leaves the component's queue count (ran,
+     * forwarded, or refused), the same points that keep {@link LocalShell}'s queue count exact.
+     */
+    void countInbound(Message message, int sign) {
+        Origin origin = message.origin();
+        if (origin != null && origin.wireBytes() > 0) {
+            inboundBytes.computeIfAbsent(origin.viaNodeId(), id -> new LongAdder()).add((long) sign * origin.wireBytes());
+        }
+    }
+
+    @Override
+    public long queuedBytesFrom(String viaNodeId) {
+        LongAdder bytes = inboundBytes.get(viaNodeId);
+        return bytes == null ? 0 : bytes.sum();
     }
 
     private void deliverRemote(Message message, RemoteRoute route) {

@@ -234,6 +234,7 @@ public final class LocalShell implements Shell {
         if (job.sequence() >= KernelCore.PEN_OFFSET) {
             pen.leftPenned();
         }
+        kernel.countInbound(job.message(), -1);
         leaveQueue();
     }
 

@@ -234,6 +234,7 @@ final class Connection implements Runnable {
 
     private void onData(Frame.Data data) throws ProtocolException {
         peer.onAck(this, data.ack());
+        awaitInboundRoom(data.xml().length);
         boolean delivered = peer.deliverInOrder(this, data.seq(), () -> {
             Message message;
             try {
@@ -267,9 +268,26 @@ final class Connection implements Runnable {
                         + " of node '" + named + "' but was sent directly by node '" + peer.nodeId
                         + "': a node may only send messages under its own id", null);
             }
-            return Origin.direct(peer.nodeId, authenticatedId != null);
+            return new Origin(peer.nodeId, peer.nodeId, 0, authenticatedId != null, data.xml().length);
         }
-        return new Origin(named, peer.nodeId, data.hops(), authenticatedId != null);
+        return new Origin(named, peer.nodeId, data.hops(), authenticatedId != null, data.xml().length);
+    }
+
+    /**
+     * Waits, not reading, while this peer's messages held in the kernel's queues and this one
+     * would exceed {@link io.etherware.services.network.NetworkConfig#maxInboundBytesPerPeer}: the
+     * peer's writes then back up over TCP, and a peer that floods a slow component is slowed down
+     * instead of filling the heap. Polls every millisecond; ends when the connection closes.
+     */
+    private void awaitInboundRoom(int bytes) {
+        long max = engine.config().maxInboundBytesPerPeer();
+        if (engine.kernel().queuedBytesFrom(peer.nodeId) + bytes <= max) {
+            return;
+        }
+        engine.counters().inboundPauses.increment();
+        while (!closing && engine.kernel().queuedBytesFrom(peer.nodeId) + bytes > max) {
+            java.util.concurrent.locks.LockSupport.parkNanos(1_000_000);
+        }
     }
 
     // ---------------------------------------------------------------- the writer thread

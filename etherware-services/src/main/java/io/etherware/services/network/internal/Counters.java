@@ -17,6 +17,7 @@ final class Counters {
     final LongAdder opened = new LongAdder();
     final LongAdder handshakesFailed = new LongAdder();
     final LongAdder announcementsRefused = new LongAdder();
+    final LongAdder inboundPauses = new LongAdder();
     final java.util.concurrent.atomic.AtomicLong handshakesEvicted = new java.util.concurrent.atomic.AtomicLong();
     private final LongAdder[] closes = new LongAdder[CloseReason.values().length];
 
@@ -40,6 +41,6 @@ final class Counters {
         }
         return new NetworkStats(nodeId, connectedPeers, sent.sum(), resent.sum(), received.sum(), duplicates.sum(),
                 overflowDropped.sum(), undeliverable.sum(), opened.sum(), handshakesFailed.sum(), byReason,
-                announcementsRefused.sum());
+                announcementsRefused.sum(), inboundPauses.sum());
     }
 }

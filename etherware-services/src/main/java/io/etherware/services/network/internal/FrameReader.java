@@ -101,7 +101,7 @@ final class FrameReader {
         try {
             return switch (type) {
                 case Frame.DATA -> readData(bodyBytes);
-                case Frame.ACK -> new Frame.Ack(exactly(bodyBytes, 8, "ACK").getLong());
+                case Frame.ACK -> new Frame.Ack(count(exactly(bodyBytes, 8, "ACK").getLong(), "ACK count"));
                 case Frame.HEARTBEAT -> {
                     exactly(bodyBytes, 0, "HEARTBEAT");
                     yield Frame.Heartbeat.INSTANCE;
@@ -113,7 +113,12 @@ final class FrameReader {
                 }
                 case Frame.RESUME -> {
                     ByteBuffer body = exactly(bodyBytes, 24, "RESUME");
-                    yield new Frame.Resume(body.getLong(), body.getLong(), body.getLong());
+                    long streamId = body.getLong();
+                    if (streamId == 0) {
+                        throw new ProtocolException(CloseReason.MALFORMED_FRAME, "RESUME streamId 0: a stream id is"
+                                + " never 0 (0 means none, in knownStreamId only)");
+                    }
+                    yield new Frame.Resume(streamId, body.getLong(), count(body.getLong(), "RESUME receivedCount"));
                 }
                 case Frame.ANNOUNCE -> readAnnounce(body(bodyBytes));
                 case Frame.REJECT -> {
@@ -146,12 +151,20 @@ final class FrameReader {
             throw new ProtocolException(CloseReason.MALFORMED_FRAME, "DATA frame of " + (bodyBytes + 1)
                     + " bytes is shorter than its header");
         }
-        long seq = in.readLong();
-        long ack = in.readLong();
+        long seq = count(in.readLong(), "DATA seq");
+        long ack = count(in.readLong(), "DATA ack");
         int hops = in.readUnsignedByte();
         byte[] xml = new byte[bodyBytes - (Frame.DATA_OVERHEAD_BYTES - 1)];
         in.readFully(xml);
         return new Frame.Data(seq, ack, hops, xml);
+    }
+
+    /** A sequence number or count: never negative. */
+    private static long count(long value, String field) throws ProtocolException {
+        if (value < 0) {
+            throw new ProtocolException(CloseReason.MALFORMED_FRAME, field + " " + value + " is negative");
+        }
+        return value;
     }
 
     private static Frame.Announce readAnnounce(ByteBuffer body) throws ProtocolException {
