@@ -65,6 +65,11 @@ final class TestPki {
         }
     }
 
+    /** Where the stores are: {@code trust.p12} and {@code <nodeId>.p12}, as the README's recipe names them. */
+    Path directory() {
+        return directory;
+    }
+
     /** The trust store holding this deployment's CA. */
     Path trustStore() {
         return trustStore;
