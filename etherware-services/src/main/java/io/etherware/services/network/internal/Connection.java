@@ -159,6 +159,7 @@ final class Connection implements Runnable {
         }
         bytesWritten = writer.bytes();
         Thread.currentThread().setName("etherware-net-" + engine.nodeId() + "-read-" + known.nodeId);
+        engine.handshakeEnded(this); // no longer a pending handshake that a flood could push out
         activated = engine.activate(this, hello, theirs, helloArrivedEpochNs);
         socket.setSoTimeout((int) Math.max(1, TimeUnit.NANOSECONDS.toMillis(engine.config().heartbeatTimeoutNs())));
     }

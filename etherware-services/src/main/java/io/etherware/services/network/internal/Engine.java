@@ -235,6 +235,9 @@ public final class Engine {
             if (oldest == null) {
                 break;
             }
+            if (oldest.isActivated()) {
+                continue; // finished its handshake just now
+            }
             long evicted = counters.handshakesEvicted.incrementAndGet();
             if (evicted == 1 || evicted % 1000 == 0) {
                 log.warn("node {}: more than maxPendingHandshakes={} connections in their handshake; closing the"
