@@ -77,28 +77,12 @@ public interface ConnectionFactory {
 
         @Override
         public ServerSocket listen(InetSocketAddress address) throws IOException {
-            var server = new ServerSocket();
-            try {
-                server.setReuseAddress(true);
-                server.bind(address, 64);
-                return server;
-            } catch (IOException e) {
-                server.close();
-                throw e;
-            }
+            return Sockets.bind(new ServerSocket(), address);
         }
 
         @Override
         public Socket connect(InetSocketAddress address, int timeoutMs) throws IOException {
-            var socket = new Socket();
-            try {
-                socket.setTcpNoDelay(true);
-                socket.connect(address, timeoutMs);
-                return socket;
-            } catch (IOException e) {
-                socket.close();
-                throw e;
-            }
+            return Sockets.connect(new Socket(), address, timeoutMs);
         }
     }
 }

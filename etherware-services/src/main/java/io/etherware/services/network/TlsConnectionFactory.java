@@ -153,33 +153,19 @@ public final class TlsConnectionFactory implements ConnectionFactory {
     @Override
     public ServerSocket listen(InetSocketAddress address) throws IOException {
         var server = (SSLServerSocket) context.getServerSocketFactory().createServerSocket();
-        try {
-            server.setReuseAddress(true);
-            server.setEnabledProtocols(PROTOCOLS);
-            server.setNeedClientAuth(true);
-            server.bind(address, 64);
-            return server;
-        } catch (IOException e) {
-            server.close();
-            throw e;
-        }
+        server.setEnabledProtocols(PROTOCOLS);
+        server.setNeedClientAuth(true);
+        return Sockets.bind(server, address);
     }
 
     @Override
     public Socket connect(InetSocketAddress address, int timeoutMs) throws IOException {
         var socket = (SSLSocket) context.getSocketFactory().createSocket();
-        try {
-            socket.setTcpNoDelay(true);
-            SSLParameters parameters = socket.getSSLParameters();
-            parameters.setProtocols(PROTOCOLS);
-            parameters.setEndpointIdentificationAlgorithm(null); // identity is the node id, checked after
-            socket.setSSLParameters(parameters);
-            socket.connect(address, timeoutMs);
-            return socket;
-        } catch (IOException e) {
-            socket.close();
-            throw e;
-        }
+        SSLParameters parameters = socket.getSSLParameters();
+        parameters.setProtocols(PROTOCOLS);
+        parameters.setEndpointIdentificationAlgorithm(null); // identity is the node id, checked after
+        socket.setSSLParameters(parameters);
+        return Sockets.connect(socket, address, timeoutMs);
     }
 
     /** Completes the TLS handshake and returns the node id of the peer's certificate. */
