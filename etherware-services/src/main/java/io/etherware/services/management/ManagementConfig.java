@@ -7,6 +7,7 @@ import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Objects;
+import java.util.Set;
 
 /**
  * Configuration of a node's {@link ManagementService}, validated when built. Defaults, in one
@@ -14,8 +15,10 @@ import java.util.Objects;
  * <ul>
  *   <li>{@code allowlist} empty: classes come only from the class path; a jar is refused until
  *       its directory is allowed with {@link Builder#allowDirectory};</li>
- *   <li>{@code acceptRemoteRequests} false: requests made on another node are refused (there is no
- *       authentication of links yet, so a peer could otherwise run code here);</li>
+ *   <li>{@code accessList} empty: every management request that arrived from another node is
+ *       refused, and so is every migration into this node (see "Remote management" below);</li>
+ *   <li>{@code allowUnauthenticatedLinks} false: a request that arrived over a link that did not
+ *       authenticate its peer (plain TCP) is refused, whatever the access list says;</li>
  *   <li>{@code firstMessageWait} 1 s: how long the answer to an upgrade waits for the new logic's
  *       first message, to report the swap gap; after that it is answered with {@code gapNs = -1};</li>
  *   <li>{@code migrationStepTimeout} 2 s: how long the source of a migration waits for each answer
@@ -28,22 +31,46 @@ import java.util.Objects;
  *       and the parent of the jars' class loaders.</li>
  * </ul>
  *
+ * <h2>Remote management</h2>
+ * Who asks is decided from the connection, never from the message (DESIGN decision 11): a request
+ * is local when it was made on this node ({@link io.etherware.core.message.Message#origin()} is
+ * null) and is then served. A request that arrived from another node is served only when
+ * <ol>
+ *   <li>it came straight from the node that made it ({@code origin.hops() == 0}): a relay must not
+ *       lend its rights, so a relayed request is refused even if its maker is allowed;</li>
+ *   <li>its link authenticated that node (TLS), unless {@link Builder#allowUnauthenticatedLinks}
+ *       was chosen for a loopback development setup;</li>
+ *   <li>an {@link AccessRule} of the access list permits that node the operation on that component
+ *       ({@link Builder#allowRemote}; the matching rule is on {@link AccessRule}).</li>
+ * </ol>
+ * The same rule guards a migration into this node: each step (prepare, install, hand-over) must come
+ * from a node the list allows to {@link AccessRule.Operation#MIGRATE MIGRATE} that profile, and
+ * install and hand-over from the node that prepared it; and the source of a migration takes the
+ * target's answers only if they came straight from the target. A refusal is counted
+ * ({@link ManagementService#refusedCount()}), logged at WARN with the node, the operation and the
+ * profile, and answered with a {@link ManagementFailure} of reason
+ * {@link ManagementFailure.Reason#REMOTE_REFUSED} that says what to configure.
+ *
  * <p>Immutable; safe to share between threads.
  *
  * @param allowlist            the directories jars may be loaded from, canonical (symbolic links
  *                             resolved)
- * @param acceptRemoteRequests whether requests made on another node are served
+ * @param accessList           what other nodes may ask for
+ * @param allowUnauthenticatedLinks whether the access list also applies to requests that arrived
+ *                             over links that did not authenticate their peer
  * @param firstMessageWaitNs   how long an upgrade's answer waits for the new logic's first message
  *                             (also a migration's hand-over answer, for the gap)
  * @param migrationStepTimeoutNs how long a migration's source waits for each answer of the target
  * @param handoverWaitNs       how long a migration's target waits for the hand-over
  * @param classLoader          the node's class loader for implementations
  */
-public record ManagementConfig(List<Path> allowlist, boolean acceptRemoteRequests, long firstMessageWaitNs,
-                               long migrationStepTimeoutNs, long handoverWaitNs, ClassLoader classLoader) {
+public record ManagementConfig(List<Path> allowlist, List<AccessRule> accessList,
+                               boolean allowUnauthenticatedLinks, long firstMessageWaitNs, long migrationStepTimeoutNs,
+                               long handoverWaitNs, ClassLoader classLoader) {
 
     public ManagementConfig {
         allowlist = List.copyOf(allowlist);
+        accessList = List.copyOf(accessList);
         for (Path directory : allowlist) {
             if (!directory.isAbsolute() || !directory.equals(directory.normalize())) {
                 throw new IllegalArgumentException("allowlist entry '" + directory
@@ -76,7 +103,8 @@ public record ManagementConfig(List<Path> allowlist, boolean acceptRemoteRequest
     /** Builds a {@link ManagementConfig}; not thread-safe. */
     public static final class Builder {
         private final List<Path> allowlist = new ArrayList<>();
-        private boolean acceptRemoteRequests;
+        private final List<AccessRule> accessList = new ArrayList<>();
+        private boolean allowUnauthenticatedLinks;
         private long firstMessageWaitNs = Duration.ofSeconds(1).toNanos();
         private long migrationStepTimeoutNs = Duration.ofSeconds(2).toNanos();
         private long handoverWaitNs = Duration.ofSeconds(5).toNanos();
@@ -107,9 +135,29 @@ public record ManagementConfig(List<Path> allowlist, boolean acceptRemoteRequest
             return this;
         }
 
-        /** Serve management requests made on other nodes (default false). */
-        public Builder acceptRemoteRequests(boolean value) {
-            acceptRemoteRequests = value;
+        /**
+         * Lets node {@code node} ({@code "*"}: any node) ask this node for {@code operations} on
+         * the components {@code profilePattern} matches; see {@link AccessRule} for the matching.
+         * Each call adds a rule; a request is served if any rule permits it.
+         */
+        public Builder allowRemote(String node, Set<AccessRule.Operation> operations, String profilePattern) {
+            return allowRemote(new AccessRule(node, operations, profilePattern));
+        }
+
+        /** Adds {@code rule} to the access list. */
+        public Builder allowRemote(AccessRule rule) {
+            accessList.add(Objects.requireNonNull(rule, "rule"));
+            return this;
+        }
+
+        /**
+         * Also applies the access list to requests that arrived over links that did not
+         * authenticate their peer (plain TCP), whose node id is only the peer's word. For a
+         * loopback development setup; between machines, connect the nodes with TLS instead.
+         * Default false: such requests are refused.
+         */
+        public Builder allowUnauthenticatedLinks(boolean value) {
+            allowUnauthenticatedLinks = value;
             return this;
         }
 
@@ -145,8 +193,8 @@ public record ManagementConfig(List<Path> allowlist, boolean acceptRemoteRequest
 
         /** The validated configuration. */
         public ManagementConfig build() {
-            return new ManagementConfig(allowlist, acceptRemoteRequests, firstMessageWaitNs, migrationStepTimeoutNs,
-                    handoverWaitNs, classLoader);
+            return new ManagementConfig(allowlist, accessList, allowUnauthenticatedLinks,
+                    firstMessageWaitNs, migrationStepTimeoutNs, handoverWaitNs, classLoader);
         }
     }
 }

@@ -14,7 +14,8 @@ import java.util.Objects;
  *
  * @param target        the component's profile on the source node (exact, or a query matching one)
  * @param toNode        the id of the node to move it to; it must be connected to the source
- *                      through the source's NetworkMessenger and accept remote requests
+ *                      through the source's NetworkMessenger, and its access list must let the
+ *                      source {@link AccessRule.Operation#MIGRATE MIGRATE} the component
  * @param className     the class the target instantiates, or null for the class of the logic
  *                      running now; see {@link Implementation} for the class's contract
  * @param jarPath       a jar inside one of the target's allowlisted directories, or null to load

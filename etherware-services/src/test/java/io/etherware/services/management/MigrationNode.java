@@ -8,9 +8,14 @@ import io.etherware.services.network.NetworkConfig;
 import io.etherware.services.network.NetworkMessenger;
 import java.net.InetSocketAddress;
 import java.time.Duration;
+import java.util.Set;
 import java.util.function.Supplier;
 
-/** A node on loopback with a NetworkMessenger and a management service that can migrate, for tests. */
+/**
+ * A node on loopback with a NetworkMessenger and a management service that can migrate, for tests.
+ * What the messenger delivers carries an {@link io.etherware.core.message.Origin} (see
+ * {@link NetworkOrigins}), so the access lists are exercised as between real nodes.
+ */
 final class MigrationNode implements AutoCloseable {
 
     final EtherwareNode node;
@@ -23,9 +28,13 @@ final class MigrationNode implements AutoCloseable {
         this.management = management;
     }
 
-    /** Migrations in both directions: both nodes accept the other's steps. */
+    /**
+     * Migrations in both directions between the test's nodes: any node may migrate anything here,
+     * over the plain-TCP loopback links of the tests.
+     */
     static ManagementConfig.Builder config() {
-        return ManagementConfig.builder().acceptRemoteRequests(true);
+        return ManagementConfig.builder().allowRemote(AccessRule.ANY_NODE, Set.of(AccessRule.Operation.MIGRATE),
+                AccessRule.ANY_PROFILE).allowUnauthenticatedLinks(true);
     }
 
     static MigrationNode start(String nodeId, ManagementConfig config, InetSocketAddress... peers) {
@@ -49,7 +58,7 @@ final class MigrationNode implements AutoCloseable {
         }
         NetworkMessenger net;
         try {
-            net = NetworkMessenger.start(node, network.build());
+            net = NetworkMessenger.start(new NetworkOrigins(node), network.build());
         } catch (RuntimeException e) {
             node.close();
             throw e;
