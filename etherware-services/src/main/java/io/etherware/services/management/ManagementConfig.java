@@ -1,10 +1,16 @@
 package io.etherware.services.management;
 
 import java.io.IOException;
+import java.io.InputStream;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.security.GeneralSecurityException;
+import java.security.KeyStore;
+import java.security.KeyStoreException;
+import java.security.cert.X509Certificate;
 import java.time.Duration;
 import java.util.ArrayList;
+import java.util.Collections;
 import java.util.List;
 import java.util.Objects;
 import java.util.Set;
@@ -15,6 +21,9 @@ import java.util.Set;
  * <ul>
  *   <li>{@code allowlist} empty: classes come only from the class path; a jar is refused until
  *       its directory is allowed with {@link Builder#allowDirectory};</li>
+ *   <li>{@code trustedSigners} none: a jar is refused until the certificates whose keys sign the
+ *       node's plugins are trusted with {@link Builder#trustStore}, {@link Builder#trustedSigners}
+ *       or {@link Builder#trustedSigner} (see "Plugins" below);</li>
  *   <li>{@code accessList} empty: every management request that arrived from another node is
  *       refused, and so is every migration into this node (see "Remote management" below);</li>
  *   <li>{@code allowUnauthenticatedLinks} false: a request that arrived over a link that did not
@@ -51,10 +60,22 @@ import java.util.Set;
  * profile, and answered with a {@link ManagementFailure} of reason
  * {@link ManagementFailure.Reason#REMOTE_REFUSED} that says what to configure.
  *
+ * <h2>Plugins</h2>
+ * A jar is loaded only if its canonical path lies in an allowlisted directory and every class and
+ * resource in it (all entries but the manifest and the signature files in {@code META-INF/}) is
+ * signed, with {@code jarsigner}, by a key whose certificate the node trusts: the signer's
+ * certificate is a trusted one, or its certificate chain validates (PKIX, no revocation check)
+ * up to a trusted certificate. The certificates of the chain must be valid now; a signature
+ * time stamp is not taken into account, so re-sign plugins before their certificate expires. The
+ * node verifies a private copy of the jar and loads from that copy, so the file cannot change
+ * between the check and the loading. Classes from the class path need no signature.
+ *
  * <p>Immutable; safe to share between threads.
  *
  * @param allowlist            the directories jars may be loaded from, canonical (symbolic links
  *                             resolved)
+ * @param trustedSigners       the certificates whose keys (or whose CAs' keys) plugins must be
+ *                             signed with
  * @param accessList           what other nodes may ask for
  * @param allowUnauthenticatedLinks whether the access list also applies to requests that arrived
  *                             over links that did not authenticate their peer
@@ -64,12 +85,13 @@ import java.util.Set;
  * @param handoverWaitNs       how long a migration's target waits for the hand-over
  * @param classLoader          the node's class loader for implementations
  */
-public record ManagementConfig(List<Path> allowlist, List<AccessRule> accessList,
+public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trustedSigners, List<AccessRule> accessList,
                                boolean allowUnauthenticatedLinks, long firstMessageWaitNs, long migrationStepTimeoutNs,
                                long handoverWaitNs, ClassLoader classLoader) {
 
     public ManagementConfig {
         allowlist = List.copyOf(allowlist);
+        trustedSigners = List.copyOf(trustedSigners);
         accessList = List.copyOf(accessList);
         for (Path directory : allowlist) {
             if (!directory.isAbsolute() || !directory.equals(directory.normalize())) {
@@ -103,6 +125,7 @@ public record ManagementConfig(List<Path> allowlist, List<AccessRule> accessList
     /** Builds a {@link ManagementConfig}; not thread-safe. */
     public static final class Builder {
         private final List<Path> allowlist = new ArrayList<>();
+        private final List<X509Certificate> trustedSigners = new ArrayList<>();
         private final List<AccessRule> accessList = new ArrayList<>();
         private boolean allowUnauthenticatedLinks;
         private long firstMessageWaitNs = Duration.ofSeconds(1).toNanos();
@@ -161,6 +184,64 @@ public record ManagementConfig(List<Path> allowlist, List<AccessRule> accessList
             return this;
         }
 
+        /** Trusts plugins signed with the key of {@code certificate}, or of a certificate it issued. */
+        public Builder trustedSigner(X509Certificate certificate) {
+            trustedSigners.add(Objects.requireNonNull(certificate, "certificate"));
+            return this;
+        }
+
+        /**
+         * Trusts the certificates of {@code store}'s trusted-certificate entries (those that
+         * {@code keytool -importcert} makes) as plugin signers.
+         *
+         * @throws IllegalArgumentException if it holds none
+         */
+        public Builder trustedSigners(KeyStore store) {
+            Objects.requireNonNull(store, "store");
+            List<X509Certificate> found = new ArrayList<>();
+            List<String> aliases;
+            try {
+                aliases = Collections.list(store.aliases());
+                for (String alias : aliases) {
+                    if (store.isCertificateEntry(alias) && store.getCertificate(alias) instanceof X509Certificate x509) {
+                        found.add(x509);
+                    }
+                }
+            } catch (KeyStoreException e) {
+                throw new IllegalArgumentException("trustedSigners: the key store cannot be read (" + e
+                        + "); load it before passing it", e);
+            }
+            if (found.isEmpty()) {
+                throw new IllegalArgumentException("trustedSigners: the key store holds no trusted certificate entry"
+                        + " (aliases " + aliases + "); import the plugin signer's certificate with keytool -importcert");
+            }
+            trustedSigners.addAll(found);
+            return this;
+        }
+
+        /**
+         * Trusts the certificates of the PKCS12 trust store {@code file} (see
+         * {@link #trustedSigners(KeyStore)}), opened with {@code password}.
+         *
+         * @throws IllegalArgumentException if it cannot be read or holds no certificate
+         */
+        public Builder trustStore(Path file, char[] password) {
+            Objects.requireNonNull(file, "file");
+            KeyStore store;
+            try (InputStream in = Files.newInputStream(file)) {
+                store = KeyStore.getInstance("PKCS12");
+                store.load(in, password);
+            } catch (IOException | GeneralSecurityException e) {
+                throw new IllegalArgumentException("trustStore='" + file + "' cannot be read as PKCS12 (" + e
+                        + "); make it with keytool -importcert -storetype PKCS12 and check the password", e);
+            }
+            try {
+                return trustedSigners(store);
+            } catch (IllegalArgumentException e) {
+                throw new IllegalArgumentException("trustStore='" + file + "': " + e.getMessage(), e);
+            }
+        }
+
         /** How long an upgrade's answer waits for the new logic's first message (default 1 s). */
         public Builder firstMessageWait(Duration value) {
             Objects.requireNonNull(value, "firstMessageWait");
@@ -193,7 +274,7 @@ public record ManagementConfig(List<Path> allowlist, List<AccessRule> accessList
 
         /** The validated configuration. */
         public ManagementConfig build() {
-            return new ManagementConfig(allowlist, accessList, allowUnauthenticatedLinks,
+            return new ManagementConfig(allowlist, trustedSigners, accessList, allowUnauthenticatedLinks,
                     firstMessageWaitNs, migrationStepTimeoutNs, handoverWaitNs, classLoader);
         }
     }

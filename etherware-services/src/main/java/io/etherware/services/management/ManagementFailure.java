@@ -41,6 +41,11 @@ public record ManagementFailure(String operation, Profile target, Reason reason,
         NOT_RUNNING,
         /** The jar is outside the allowlisted directories. */
         CODE_NOT_ALLOWED,
+        /**
+         * The jar is not signed, only partly signed, signed by a key the node does not trust, or
+         * changed after signing; or the node trusts no signer at all (see {@link ManagementConfig}).
+         */
+        UNTRUSTED_CODE,
         /** The class or the jar could not be found or loaded. */
         CLASS_NOT_LOADABLE,
         /** The class breaks the implementation contract (see {@link Implementation}). */

@@ -49,8 +49,9 @@ import org.slf4j.Logger;
  *       {@link ManagementConfig access list} lets that node upgrade that component (the rule is on
  *       {@link ManagementConfig}), then hand the work to the service's own worker thread; the
  *       dispatcher is free again at once.</li>
- *   <li>On the worker: resolve the component, load and check the class (from the class path or
- *       an allowlisted jar, see {@link Implementation}) and construct its first instance.</li>
+ *   <li>On the worker: resolve the component, load and check the class (from the class path, or
+ *       from an allowlisted jar signed by a trusted key, see {@link Implementation}) and construct
+ *       its first instance.</li>
  *   <li>Back on the service's dispatcher (the worker sends the loaded logic to the service as a
  *       local message carrying the request's QoS, so the swap starts at the request's priority,
  *       paper Section VI-C1):
@@ -126,7 +127,7 @@ public final class ManagementService implements Component {
         this.kernel = Objects.requireNonNull(kernel, "kernel");
         this.config = Objects.requireNonNull(config, "config");
         this.network = network;
-        this.loader = new ImplementationLoader(config.allowlist(), config.classLoader());
+        this.loader = new ImplementationLoader(config.allowlist(), config.trustedSigners(), config.classLoader());
         this.access = new AccessControl(kernel, config);
         this.counters = counters;
         this.jarLoaders = jarLoaders;

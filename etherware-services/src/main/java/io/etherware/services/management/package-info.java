@@ -5,7 +5,8 @@
  *
  * <h2>Using it</h2>
  * <pre>{@code
- * ManagementService.install(node, ManagementConfig.builder().allowDirectory(Path.of("/opt/plant/upgrades")).build());
+ * ManagementService.install(node, ManagementConfig.builder().allowDirectory(Path.of("/opt/plant/upgrades"))
+ *         .trustStore(Path.of("/etc/etherware/plugin-trust.p12"), password).build());
  * ...
  * UpgradeResult result = Management.upgrade(node, "plant-1", Profile.parse("controller[car=1]"),
  *         Implementation.fromJar(Path.of("/opt/plant/upgrades/controller-2.jar"), "com.example.ControllerV2")
@@ -107,10 +108,7 @@
  * unsubscribes the old one.
  *
  * <h2>Guards</h2>
- * Code comes only from the node's class path or from jars whose canonical path (symbolic links
- * resolved) lies inside an allowlisted directory.
- *
- * <p><b>Who may ask.</b> Identity comes from the connection, never from text a peer wrote (DESIGN
+ * <b>Who may ask.</b> Identity comes from the connection, never from text a peer wrote (DESIGN
  * decision 11): the network layer sets {@link io.etherware.core.message.Message#origin()} on every
  * message it delivers, from the authenticated connection. A request without an origin was made on
  * this node and is served. A request with one is served only if it came straight from the node
@@ -127,6 +125,15 @@
  * target. Every refusal is counted, logged at WARN with the node, the operation and the profile,
  * and answered with a {@link io.etherware.services.management.ManagementFailure} of reason
  * {@code REMOTE_REFUSED} naming what was refused and the fix.
+ *
+ * <p><b>What code may run.</b> Code comes from the node's class path, or from a jar whose canonical
+ * path (symbolic links resolved) lies inside an allowlisted directory <em>and</em> whose every class
+ * and resource is signed (jarsigner) by a key whose certificate the node trusts, or which a trusted
+ * certificate issued ({@link io.etherware.services.management.ManagementConfig.Builder#trustStore}).
+ * An unsigned, partly signed, untrusted or tampered jar, or any jar on a node that trusts no signer,
+ * is refused ({@code UNTRUSTED_CODE}) before any of its classes is defined. The node verifies a
+ * private copy of the jar and loads from it, so the file cannot be swapped between the check and
+ * the loading.
  *
  * <p>Thread-safety of each type is stated on the type.
  */
