@@ -507,12 +507,20 @@ public final class ManagementService implements Component {
         return counters.migratedIn.sum();
     }
 
-    /** Upgrades and migrations (or their steps here) that failed (refusals not included). Any thread. */
+    /**
+     * Upgrades and migrations (or their steps here) that failed, refusals on arrival not included;
+     * a migration stopped inside by an access check (a step from another node than the one that
+     * prepared it, an answer from another node than the target) counts here. Any thread.
+     */
     public long failedCount() {
         return counters.failed.sum();
     }
 
-    /** Requests refused: from other nodes, or of a kind the service does not serve. Any thread. */
+    /**
+     * Requests and migration steps refused on arrival: from other nodes that the access list does
+     * not allow (or relayed, or over an unauthenticated link), or of a kind the service does not
+     * serve. Any thread.
+     */
     public long refusedCount() {
         return counters.refused.sum();
     }
