@@ -6,7 +6,7 @@ import java.util.Objects;
 
 /**
  * The new logic an upgrade installs: a class from the managed node's class path, or from a jar in
- * one of its allowlisted directories.
+ * one of its allowlisted directories, signed by a key the node trusts (see {@link ManagementConfig}).
  *
  * <h2>The class's contract</h2>
  * <ul>
@@ -54,7 +54,10 @@ public record Implementation(String className, Path jar, String configuration) {
         return ofClass(type.getName());
     }
 
-    /** A class in a jar on the managed node; the jar must lie in an allowlisted directory there. */
+    /**
+     * A class in a jar on the managed node; the jar must lie in an allowlisted directory there and
+     * be signed, entirely, by a key the node trusts.
+     */
     public static Implementation fromJar(Path jar, String className) {
         return new Implementation(className, Objects.requireNonNull(jar, "jar"), null);
     }

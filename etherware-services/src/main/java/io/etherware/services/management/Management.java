@@ -27,7 +27,8 @@ import java.util.concurrent.CompletableFuture;
  * <p>Requests travel as messages at {@link Criticality#HIGH} (paper Section VI-C1: the upgrade
  * request has high criticality so the upgrade runs at the highest priority) to
  * {@link #profileOf(String) the node's management service}, so a node reachable through a network
- * route is managed the same way as the local one, if it accepts remote requests.
+ * route is managed the same way as the local one, if its access list lets the requesting node ask
+ * (see {@link ManagementConfig}).
  *
  * <p>Thread-safety: stateless; every method may be called from any thread. The futures never
  * block; see {@link Kernel#request} and {@link ComponentContext#request} for the thread that

@@ -1,12 +1,19 @@
 package io.etherware.services.management;
 
 import java.io.IOException;
+import java.io.InputStream;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.security.GeneralSecurityException;
+import java.security.KeyStore;
+import java.security.KeyStoreException;
+import java.security.cert.X509Certificate;
 import java.time.Duration;
 import java.util.ArrayList;
+import java.util.Collections;
 import java.util.List;
 import java.util.Objects;
+import java.util.Set;
 
 /**
  * Configuration of a node's {@link ManagementService}, validated when built. Defaults, in one
@@ -14,8 +21,13 @@ import java.util.Objects;
  * <ul>
  *   <li>{@code allowlist} empty: classes come only from the class path; a jar is refused until
  *       its directory is allowed with {@link Builder#allowDirectory};</li>
- *   <li>{@code acceptRemoteRequests} false: requests made on another node are refused (there is no
- *       authentication of links yet, so a peer could otherwise run code here);</li>
+ *   <li>{@code trustedSigners} none: a jar is refused until the certificates whose keys sign the
+ *       node's plugins are trusted with {@link Builder#trustStore}, {@link Builder#trustedSigners}
+ *       or {@link Builder#trustedSigner} (see "Plugins" below);</li>
+ *   <li>{@code accessList} empty: every management request that arrived from another node is
+ *       refused, and so is every migration into this node (see "Remote management" below);</li>
+ *   <li>{@code allowUnauthenticatedLinks} false: a request that arrived over a link that did not
+ *       authenticate its peer (plain TCP) is refused, whatever the access list says;</li>
  *   <li>{@code firstMessageWait} 1 s: how long the answer to an upgrade waits for the new logic's
  *       first message, to report the swap gap; after that it is answered with {@code gapNs = -1};</li>
  *   <li>{@code migrationStepTimeout} 2 s: how long the source of a migration waits for each answer
@@ -28,22 +40,59 @@ import java.util.Objects;
  *       and the parent of the jars' class loaders.</li>
  * </ul>
  *
+ * <h2>Remote management</h2>
+ * Who asks is decided from the connection, never from the message (DESIGN decision 11): a request
+ * is local when it was made on this node ({@link io.etherware.core.message.Message#origin()} is
+ * null) and is then served. A request that arrived from another node is served only when
+ * <ol>
+ *   <li>it came straight from the node that made it ({@code origin.hops() == 0}): a relay must not
+ *       lend its rights, so a relayed request is refused even if its maker is allowed;</li>
+ *   <li>its link authenticated that node (TLS), unless {@link Builder#allowUnauthenticatedLinks}
+ *       was chosen for a loopback development setup;</li>
+ *   <li>an {@link AccessRule} of the access list permits that node the operation on that component
+ *       ({@link Builder#allowRemote}; the matching rule is on {@link AccessRule}).</li>
+ * </ol>
+ * The same rule guards a migration into this node: each step (prepare, install, hand-over) must come
+ * from a node the list allows to {@link AccessRule.Operation#MIGRATE MIGRATE} that profile, and
+ * install and hand-over from the node that prepared it; and the source of a migration takes the
+ * target's answers only if they came straight from the target. A refusal is counted
+ * ({@link ManagementService#refusedCount()}), logged at WARN with the node, the operation and the
+ * profile, and answered with a {@link ManagementFailure} of reason
+ * {@link ManagementFailure.Reason#REMOTE_REFUSED} that says what to configure.
+ *
+ * <h2>Plugins</h2>
+ * A jar is loaded only if its canonical path lies in an allowlisted directory and every class and
+ * resource in it (all entries but the manifest and the signature files in {@code META-INF/}) is
+ * signed, with {@code jarsigner}, by a key whose certificate the node trusts: the signer's
+ * certificate is a trusted one, or its certificate chain validates (PKIX, no revocation check)
+ * up to a trusted certificate. The certificates of the chain must be valid now; a signature
+ * time stamp is not taken into account, so re-sign plugins before their certificate expires. The
+ * node verifies a private copy of the jar and loads from that copy, so the file cannot change
+ * between the check and the loading. Classes from the class path need no signature.
+ *
  * <p>Immutable; safe to share between threads.
  *
  * @param allowlist            the directories jars may be loaded from, canonical (symbolic links
  *                             resolved)
- * @param acceptRemoteRequests whether requests made on another node are served
+ * @param trustedSigners       the certificates whose keys (or whose CAs' keys) plugins must be
+ *                             signed with
+ * @param accessList           what other nodes may ask for
+ * @param allowUnauthenticatedLinks whether the access list also applies to requests that arrived
+ *                             over links that did not authenticate their peer
  * @param firstMessageWaitNs   how long an upgrade's answer waits for the new logic's first message
  *                             (also a migration's hand-over answer, for the gap)
  * @param migrationStepTimeoutNs how long a migration's source waits for each answer of the target
  * @param handoverWaitNs       how long a migration's target waits for the hand-over
  * @param classLoader          the node's class loader for implementations
  */
-public record ManagementConfig(List<Path> allowlist, boolean acceptRemoteRequests, long firstMessageWaitNs,
-                               long migrationStepTimeoutNs, long handoverWaitNs, ClassLoader classLoader) {
+public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trustedSigners, List<AccessRule> accessList,
+                               boolean allowUnauthenticatedLinks, long firstMessageWaitNs, long migrationStepTimeoutNs,
+                               long handoverWaitNs, ClassLoader classLoader) {
 
     public ManagementConfig {
         allowlist = List.copyOf(allowlist);
+        trustedSigners = List.copyOf(trustedSigners);
+        accessList = List.copyOf(accessList);
         for (Path directory : allowlist) {
             if (!directory.isAbsolute() || !directory.equals(directory.normalize())) {
                 throw new IllegalArgumentException("allowlist entry '" + directory
@@ -76,7 +125,9 @@ public record ManagementConfig(List<Path> allowlist, boolean acceptRemoteRequest
     /** Builds a {@link ManagementConfig}; not thread-safe. */
     public static final class Builder {
         private final List<Path> allowlist = new ArrayList<>();
-        private boolean acceptRemoteRequests;
+        private final List<X509Certificate> trustedSigners = new ArrayList<>();
+        private final List<AccessRule> accessList = new ArrayList<>();
+        private boolean allowUnauthenticatedLinks;
         private long firstMessageWaitNs = Duration.ofSeconds(1).toNanos();
         private long migrationStepTimeoutNs = Duration.ofSeconds(2).toNanos();
         private long handoverWaitNs = Duration.ofSeconds(5).toNanos();
@@ -107,10 +158,88 @@ public record ManagementConfig(List<Path> allowlist, boolean acceptRemoteRequest
             return this;
         }
 
-        /** Serve management requests made on other nodes (default false). */
-        public Builder acceptRemoteRequests(boolean value) {
-            acceptRemoteRequests = value;
+        /**
+         * Lets node {@code node} ({@code "*"}: any node) ask this node for {@code operations} on
+         * the components {@code profilePattern} matches; see {@link AccessRule} for the matching.
+         * Each call adds a rule; a request is served if any rule permits it.
+         */
+        public Builder allowRemote(String node, Set<AccessRule.Operation> operations, String profilePattern) {
+            return allowRemote(new AccessRule(node, operations, profilePattern));
+        }
+
+        /** Adds {@code rule} to the access list. */
+        public Builder allowRemote(AccessRule rule) {
+            accessList.add(Objects.requireNonNull(rule, "rule"));
             return this;
+        }
+
+        /**
+         * Also applies the access list to requests that arrived over links that did not
+         * authenticate their peer (plain TCP), whose node id is only the peer's word. For a
+         * loopback development setup; between machines, connect the nodes with TLS instead.
+         * Default false: such requests are refused.
+         */
+        public Builder allowUnauthenticatedLinks(boolean value) {
+            allowUnauthenticatedLinks = value;
+            return this;
+        }
+
+        /** Trusts plugins signed with the key of {@code certificate}, or of a certificate it issued. */
+        public Builder trustedSigner(X509Certificate certificate) {
+            trustedSigners.add(Objects.requireNonNull(certificate, "certificate"));
+            return this;
+        }
+
+        /**
+         * Trusts the certificates of {@code store}'s trusted-certificate entries (those that
+         * {@code keytool -importcert} makes) as plugin signers.
+         *
+         * @throws IllegalArgumentException if it holds none
+         */
+        public Builder trustedSigners(KeyStore store) {
+            Objects.requireNonNull(store, "store");
+            List<X509Certificate> found = new ArrayList<>();
+            List<String> aliases;
+            try {
+                aliases = Collections.list(store.aliases());
+                for (String alias : aliases) {
+                    if (store.isCertificateEntry(alias) && store.getCertificate(alias) instanceof X509Certificate x509) {
+                        found.add(x509);
+                    }
+                }
+            } catch (KeyStoreException e) {
+                throw new IllegalArgumentException("trustedSigners: the key store cannot be read (" + e
+                        + "); load it before passing it", e);
+            }
+            if (found.isEmpty()) {
+                throw new IllegalArgumentException("trustedSigners: the key store holds no trusted certificate entry"
+                        + " (aliases " + aliases + "); import the plugin signer's certificate with keytool -importcert");
+            }
+            trustedSigners.addAll(found);
+            return this;
+        }
+
+        /**
+         * Trusts the certificates of the PKCS12 trust store {@code file} (see
+         * {@link #trustedSigners(KeyStore)}), opened with {@code password}.
+         *
+         * @throws IllegalArgumentException if it cannot be read or holds no certificate
+         */
+        public Builder trustStore(Path file, char[] password) {
+            Objects.requireNonNull(file, "file");
+            KeyStore store;
+            try (InputStream in = Files.newInputStream(file)) {
+                store = KeyStore.getInstance("PKCS12");
+                store.load(in, password);
+            } catch (IOException | GeneralSecurityException e) {
+                throw new IllegalArgumentException("trustStore='" + file + "' cannot be read as PKCS12 (" + e
+                        + "); make it with keytool -importcert -storetype PKCS12 and check the password", e);
+            }
+            try {
+                return trustedSigners(store);
+            } catch (IllegalArgumentException e) {
+                throw new IllegalArgumentException("trustStore='" + file + "': " + e.getMessage(), e);
+            }
         }
 
         /** How long an upgrade's answer waits for the new logic's first message (default 1 s). */
@@ -145,8 +274,8 @@ public record ManagementConfig(List<Path> allowlist, boolean acceptRemoteRequest
 
         /** The validated configuration. */
         public ManagementConfig build() {
-            return new ManagementConfig(allowlist, acceptRemoteRequests, firstMessageWaitNs, migrationStepTimeoutNs,
-                    handoverWaitNs, classLoader);
+            return new ManagementConfig(allowlist, trustedSigners, accessList, allowUnauthenticatedLinks,
+                    firstMessageWaitNs, migrationStepTimeoutNs, handoverWaitNs, classLoader);
         }
     }
 }

@@ -27,7 +27,11 @@ public record ManagementFailure(String operation, Profile target, Reason reason,
 
     /** Why a management request failed. */
     public enum Reason {
-        /** The request came from another node and this node does not accept remote requests. */
+        /**
+         * The request (or a migration step, or a step's answer) came from another node and this
+         * node's access list does not let that node ask for it, or it came through a relay, or
+         * over an unauthenticated link (see {@link ManagementConfig}).
+         */
         REMOTE_REFUSED,
         /** The request was malformed (e.g. a class name that is not a binary name). */
         BAD_REQUEST,
@@ -37,6 +41,11 @@ public record ManagementFailure(String operation, Profile target, Reason reason,
         NOT_RUNNING,
         /** The jar is outside the allowlisted directories. */
         CODE_NOT_ALLOWED,
+        /**
+         * The jar is not signed, only partly signed, signed by a key the node does not trust, or
+         * changed after signing; or the node trusts no signer at all (see {@link ManagementConfig}).
+         */
+        UNTRUSTED_CODE,
         /** The class or the jar could not be found or loaded. */
         CLASS_NOT_LOADABLE,
         /** The class breaks the implementation contract (see {@link Implementation}). */

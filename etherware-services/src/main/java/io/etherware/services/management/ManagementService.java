@@ -13,7 +13,9 @@ import io.etherware.core.message.Criticality;
 import io.etherware.core.message.QoS;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
+import io.etherware.services.management.AccessRule.Operation;
 import io.etherware.services.management.ManagementFailure.Reason;
+import io.etherware.services.management.internal.AccessControl;
 import io.etherware.services.management.internal.ImplementationLoader;
 import io.etherware.services.management.internal.LoadFailure;
 import io.etherware.services.management.internal.MigrationSource;
@@ -43,11 +45,13 @@ import org.slf4j.Logger;
  *
  * <h2>An upgrade, step by step</h2>
  * <ol>
- *   <li>On the service's dispatcher: refuse a request made on another node unless
- *       {@link ManagementConfig#acceptRemoteRequests()}, then hand the work to the service's own
- *       worker thread; the dispatcher is free again at once.</li>
- *   <li>On the worker: resolve the component, load and check the class (from the class path or
- *       an allowlisted jar, see {@link Implementation}) and construct its first instance.</li>
+ *   <li>On the service's dispatcher: refuse a request that arrived from another node unless the
+ *       {@link ManagementConfig access list} lets that node upgrade that component (the rule is on
+ *       {@link ManagementConfig}), then hand the work to the service's own worker thread; the
+ *       dispatcher is free again at once.</li>
+ *   <li>On the worker: resolve the component, load and check the class (from the class path, or
+ *       from an allowlisted jar signed by a trusted key, see {@link Implementation}) and construct
+ *       its first instance.</li>
  *   <li>Back on the service's dispatcher (the worker sends the loaded logic to the service as a
  *       local message carrying the request's QoS, so the swap starts at the request's priority,
  *       paper Section VI-C1):
@@ -90,6 +94,7 @@ public final class ManagementService implements Component {
     private final ManagementConfig config;
     private final NetworkMessenger network;
     private final ImplementationLoader loader;
+    private final AccessControl access;
     /** The jar class loader behind each component upgraded from a jar; closed when replaced. */
     private final Map<Profile, URLClassLoader> jarLoaders;
     private final Counters counters;
@@ -122,7 +127,8 @@ public final class ManagementService implements Component {
         this.kernel = Objects.requireNonNull(kernel, "kernel");
         this.config = Objects.requireNonNull(config, "config");
         this.network = network;
-        this.loader = new ImplementationLoader(config.allowlist(), config.classLoader());
+        this.loader = new ImplementationLoader(config.allowlist(), config.trustedSigners(), config.classLoader());
+        this.access = new AccessControl(kernel, config);
         this.counters = counters;
         this.jarLoaders = jarLoaders;
     }
@@ -166,7 +172,7 @@ public final class ManagementService implements Component {
                 task.run();
             }
         };
-        this.migrationSource = new MigrationSource(kernel, config, network);
+        this.migrationSource = new MigrationSource(kernel, config, network, access);
         this.migrationTarget = new MigrationTarget(kernel, config, loader, continuations, this::installed);
     }
 
@@ -195,25 +201,29 @@ public final class ManagementService implements Component {
         }
     }
 
-    /** Refuses (and answers) a request made on another node unless remote requests are enabled. */
-    private boolean refusedAsRemote(Message message, String operation, Profile target) {
-        String origin = message.messageId().nodeId();
-        if (origin.equals(kernel.nodeId()) || config.acceptRemoteRequests()) {
+    /**
+     * Refuses (counts, logs and answers) a request that arrived from another node unless the
+     * access list lets that node ask for {@code operation} on {@code target}; see
+     * {@link ManagementConfig} for the rule.
+     */
+    private boolean refused(Message message, Operation operation, String operationName, Profile target) {
+        String refusal = access.refusal(message, operation, operationName, target);
+        if (refusal == null && message.contents() instanceof MigrationStep step) {
+            refusal = access.stepRefusal(message, step);
+        }
+        if (refusal == null) {
             return false;
         }
         counters.refused.increment();
-        log.warn("refused {} request {} of '{}' from node '{}' (sender '{}'): remote requests are disabled",
-                operation, message.messageId(), target, origin, message.sender());
-        reply(message, new ManagementFailure(operation, target, Reason.REMOTE_REFUSED, "request "
-                + message.messageId() + " was made on node '" + origin + "'; node '" + kernel.nodeId()
-                + "' refuses management requests from other nodes (enable them with"
-                + " ManagementConfig.builder().acceptRemoteRequests(true))"));
+        log.warn("refused {} request {} of '{}' from node '{}' (sender '{}'): {}", operationName, message.messageId(),
+                target, message.origin().nodeId(), message.sender(), refusal);
+        reply(message, new ManagementFailure(operationName, target, Reason.REMOTE_REFUSED, refusal));
         return true;
     }
 
     private void accept(Message message, UpgradeRequest request) {
         long receivedNs = kernel.clock().nanoTime();
-        if (refusedAsRemote(message, UPGRADE, request.target())) {
+        if (refused(message, Operation.UPGRADE, UPGRADE, request.target())) {
             return;
         }
         try {
@@ -338,7 +348,7 @@ public final class ManagementService implements Component {
 
     private void acceptMigration(Message message, MigrateRequest request) {
         long receivedNs = kernel.clock().nanoTime();
-        if (refusedAsRemote(message, MIGRATE, request.target())) {
+        if (refused(message, Operation.MIGRATE, MIGRATE, request.target())) {
             return;
         }
         try {
@@ -374,7 +384,7 @@ public final class ManagementService implements Component {
     /** A step of a migration into this node, from its source's management service. */
     private void acceptStep(Message message, MigrationStep step) {
         String operation = "migration " + step.phase();
-        if (refusedAsRemote(message, operation, step.target())) {
+        if (refused(message, Operation.MIGRATE, operation, step.target())) {
             return;
         }
         if (step.phase() == MigrationStep.Phase.INSTALL) {
@@ -497,12 +507,20 @@ public final class ManagementService implements Component {
         return counters.migratedIn.sum();
     }
 
-    /** Upgrades and migrations (or their steps here) that failed (refusals not included). Any thread. */
+    /**
+     * Upgrades and migrations (or their steps here) that failed, refusals on arrival not included;
+     * a migration stopped inside by an access check (a step from another node than the one that
+     * prepared it, an answer from another node than the target) counts here. Any thread.
+     */
     public long failedCount() {
         return counters.failed.sum();
     }
 
-    /** Requests refused: from other nodes, or of a kind the service does not serve. Any thread. */
+    /**
+     * Requests and migration steps refused on arrival: from other nodes that the access list does
+     * not allow (or relayed, or over an unauthenticated link), or of a kind the service does not
+     * serve. Any thread.
+     */
     public long refusedCount() {
         return counters.refused.sum();
     }

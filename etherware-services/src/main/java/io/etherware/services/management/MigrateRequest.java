@@ -14,11 +14,12 @@ import java.util.Objects;
  *
  * @param target        the component's profile on the source node (exact, or a query matching one)
  * @param toNode        the id of the node to move it to; it must be connected to the source
- *                      through the source's NetworkMessenger and accept remote requests
+ *                      through the source's NetworkMessenger, and its access list must let the
+ *                      source {@link AccessRule.Operation#MIGRATE MIGRATE} the component
  * @param className     the class the target instantiates, or null for the class of the logic
  *                      running now; see {@link Implementation} for the class's contract
- * @param jarPath       a jar inside one of the target's allowlisted directories, or null to load
- *                      the class from the target's class path
+ * @param jarPath       a jar inside one of the target's allowlisted directories, signed by a key
+ *                      the target trusts, or null to load the class from the target's class path
  * @param configuration the argument of the class's {@code (String)} constructor, or null for its
  *                      no-arg constructor
  */

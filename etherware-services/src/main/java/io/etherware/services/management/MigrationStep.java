@@ -14,7 +14,8 @@ import java.util.Objects;
  *
  * @param phase         which step
  * @param target        the exact profile of the component moving
- * @param fromNode      the source node
+ * @param fromNode      the source node; the target refuses a step whose {@code fromNode} is not the
+ *                      node it came from (its origin), and grants nothing for it
  * @param arrival       the profile under which the target receives the messages the source
  *                      forwards (unique to this migration), until and after the hand-over
  * @param className     {@link Phase#PREPARE}: the class to instantiate; otherwise null

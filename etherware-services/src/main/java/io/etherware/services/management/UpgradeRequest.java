@@ -15,9 +15,9 @@ import java.util.Objects;
  * @param target        the component's profile on that node (exact, or a query matching one)
  * @param className     the binary name of the new logic's class, e.g. {@code com.example.ControllerV2};
  *                      see {@link Implementation} for the class's contract
- * @param jarPath       a jar inside one of the node's allowlisted directories to load the class
- *                      from, through a class loader of its own; null to load it from the node's
- *                      class path
+ * @param jarPath       a jar inside one of the node's allowlisted directories, signed by a key the
+ *                      node trusts, to load the class from, through a class loader of its own;
+ *                      null to load it from the node's class path
  * @param configuration handed to the class's {@code (String)} constructor; null to use its no-arg
  *                      constructor
  */

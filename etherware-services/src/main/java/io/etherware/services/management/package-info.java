@@ -5,16 +5,22 @@
  *
  * <h2>Using it</h2>
  * <pre>{@code
- * ManagementService.install(node, ManagementConfig.builder().allowDirectory(Path.of("/opt/plant/upgrades")).build());
+ * ManagementService.install(node, ManagementConfig.builder().allowDirectory(Path.of("/opt/plant/upgrades"))
+ *         .trustStore(Path.of("/etc/etherware/plugin-trust.p12"), password).build());
  * ...
  * UpgradeResult result = Management.upgrade(node, "plant-1", Profile.parse("controller[car=1]"),
  *         Implementation.fromJar(Path.of("/opt/plant/upgrades/controller-2.jar"), "com.example.ControllerV2")
  *                 .withConfiguration("k1=-12.1,k2=95.3")).join();
  *
- * // Migration: both nodes run a NetworkMessenger and a service that knows it; the target accepts
- * // the source's steps, which are remote requests there.
- * ManagementService.install(node, ManagementConfig.builder().acceptRemoteRequests(true).build(), network);
- * MigrationResult moved = Management.migrate(node, "plant-2", Profile.parse("controller[car=1]"), "plant-1").join();
+ * // Migration: both nodes run a NetworkMessenger and a service that knows it. The target's access
+ * // list must let the source migrate the component to it, and the source's must let the requesting
+ * // node ask (here plant-1 asks plant-2 to move the controller to plant-1). Over plain TCP, also
+ * // allowUnauthenticatedLinks(true).
+ * ManagementService.install(plant1, ManagementConfig.builder()
+ *         .allowRemote("plant-2", Set.of(AccessRule.Operation.MIGRATE), "controller").build(), network1);
+ * ManagementService.install(plant2, ManagementConfig.builder()
+ *         .allowRemote("plant-1", Set.of(AccessRule.Operation.MIGRATE), "controller").build(), network2);
+ * MigrationResult moved = Management.migrate(plant1, "plant-2", Profile.parse("controller[car=1]"), "plant-1").join();
  * }</pre>
  * The new class's contract is on {@link io.etherware.services.management.Implementation}; the
  * service's steps and threads on {@link io.etherware.services.management.ManagementService}.
@@ -102,11 +108,32 @@
  * unsubscribes the old one.
  *
  * <h2>Guards</h2>
- * Code comes only from the node's class path or from jars whose canonical path (symbolic links
- * resolved) lies inside an allowlisted directory. A request whose message id was made on another
- * node is refused unless {@link io.etherware.services.management.ManagementConfig#acceptRemoteRequests()};
- * links are not authenticated yet, so enable it only on a trusted network. The target of a migration
- * must accept remote requests: the source's steps are remote requests there.
+ * <b>Who may ask.</b> Identity comes from the connection, never from text a peer wrote (DESIGN
+ * decision 11): the network layer sets {@link io.etherware.core.message.Message#origin()} on every
+ * message it delivers, from the authenticated connection. A request without an origin was made on
+ * this node and is served. A request with one is served only if it came straight from the node
+ * that made it (a relayed request is refused: a relay must not lend its rights), over a link that
+ * authenticated that node (unless
+ * {@link io.etherware.services.management.ManagementConfig.Builder#allowUnauthenticatedLinks} was
+ * chosen for loopback development), and an {@link io.etherware.services.management.AccessRule} of
+ * the node's access list lets that node ask for that operation ({@code UPGRADE}, {@code MIGRATE}) on
+ * that component; the default list is empty, so a node refuses all management from other nodes.
+ * The message id's node part, the sender profile and a step's {@code fromNode} grant nothing. A
+ * migration's steps are requests at the target: each must come from a node the target's list lets
+ * {@code MIGRATE} that profile, name that node as its {@code fromNode}, and (install, hand-over)
+ * come from the node that prepared it; the source takes an answer only if it came straight from the
+ * target. Every refusal is counted, logged at WARN with the node, the operation and the profile,
+ * and answered with a {@link io.etherware.services.management.ManagementFailure} of reason
+ * {@code REMOTE_REFUSED} naming what was refused and the fix.
+ *
+ * <p><b>What code may run.</b> Code comes from the node's class path, or from a jar whose canonical
+ * path (symbolic links resolved) lies inside an allowlisted directory <em>and</em> whose every class
+ * and resource is signed (jarsigner) by a key whose certificate the node trusts, or which a trusted
+ * certificate issued ({@link io.etherware.services.management.ManagementConfig.Builder#trustStore}).
+ * An unsigned, partly signed, untrusted or tampered jar, or any jar on a node that trusts no signer,
+ * is refused ({@code UNTRUSTED_CODE}) before any of its classes is defined. The node verifies a
+ * private copy of the jar and loads from it, so the file cannot be swapped between the check and
+ * the loading.
  *
  * <p>Thread-safety of each type is stated on the type.
  */

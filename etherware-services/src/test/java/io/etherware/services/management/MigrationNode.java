@@ -8,9 +8,14 @@ import io.etherware.services.network.NetworkConfig;
 import io.etherware.services.network.NetworkMessenger;
 import java.net.InetSocketAddress;
 import java.time.Duration;
+import java.util.Set;
 import java.util.function.Supplier;
 
-/** A node on loopback with a NetworkMessenger and a management service that can migrate, for tests. */
+/**
+ * A node on loopback with a NetworkMessenger and a management service that can migrate, for tests.
+ * What the messenger delivers carries the {@link io.etherware.core.message.Origin} of its plain-TCP
+ * connection, so the access lists are exercised as between real nodes.
+ */
 final class MigrationNode implements AutoCloseable {
 
     final EtherwareNode node;
@@ -23,9 +28,13 @@ final class MigrationNode implements AutoCloseable {
         this.management = management;
     }
 
-    /** Migrations in both directions: both nodes accept the other's steps. */
+    /**
+     * Migrations in both directions between the test's nodes: any node may migrate anything here,
+     * over the plain-TCP loopback links of the tests.
+     */
     static ManagementConfig.Builder config() {
-        return ManagementConfig.builder().acceptRemoteRequests(true);
+        return ManagementConfig.builder().allowRemote(AccessRule.ANY_NODE, Set.of(AccessRule.Operation.MIGRATE),
+                AccessRule.ANY_PROFILE).allowUnauthenticatedLinks(true);
     }
 
     static MigrationNode start(String nodeId, ManagementConfig config, InetSocketAddress... peers) {

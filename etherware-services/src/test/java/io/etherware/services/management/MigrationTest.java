@@ -15,9 +15,11 @@ import io.etherware.services.notifier.Subscription;
 import io.etherware.core.kernel.Endpoint;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageId;
+import io.etherware.core.message.Origin;
 import io.etherware.core.message.Profile;
 import java.time.Duration;
 import java.util.List;
+import java.util.Set;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.ExecutionException;
@@ -183,15 +185,95 @@ class MigrationTest {
             var inbox = new CopyOnWriteArrayList<Message>();
             Profile inboxProfile = Profile.of("inbox");
             a.node.add(inboxProfile, () -> (message, context) -> inbox.add(message));
+            // The id names the node itself, as in the attack; the origin says where it came from.
             a.node.send(new Message(Management.profileOf("mig-a"), inboxProfile, a.node.clock().epochNanos(),
-                    Management.REQUEST_QOS, MigrateRequest.of(COUNTER, "mig-b"), new MessageId("elsewhere", 3), null));
+                    Management.REQUEST_QOS, MigrateRequest.of(COUNTER, "mig-b"), new MessageId("mig-a", 3_000), null)
+                    .withOrigin(Origin.direct("elsewhere", true)));
             Await.until("the answer", () -> inbox.size() == 1);
             var failure = assertInstanceOf(ManagementFailure.class, inbox.getFirst().contents());
             assertEquals(ManagementFailure.Reason.REMOTE_REFUSED, failure.reason());
             assertEquals("migrate", failure.operation());
-            assertTrue(failure.error().contains("acceptRemoteRequests(true)"), failure.error());
+            assertTrue(failure.error().contains("node 'elsewhere' may not migrate '" + COUNTER + "'"), failure.error());
+            assertTrue(failure.error().contains("allowRemote(\"elsewhere\", Set.of(Operation.MIGRATE)"), failure.error());
             assertInstanceOf(Endpoint.Local.class, a.node.registry().resolve(COUNTER), "nothing moved");
             assertEquals(1, a.management.refusedCount());
         }
+    }
+
+    @Test
+    void shouldResumeAtTheSourceWhenTheTargetsAccessListDoesNotLetTheSourceMigrateIt() throws Exception {
+        ManagementConfig onlyOthers = ManagementConfig.builder().allowUnauthenticatedLinks(true)
+                .allowRemote("mig-c", Set.of(AccessRule.Operation.MIGRATE), "*")
+                .allowRemote("mig-a", Set.of(AccessRule.Operation.UPGRADE, AccessRule.Operation.MIGRATE), "other*")
+                .build();
+        try (var a = MigrationNode.start("mig-a", MigrationNode.config().build());
+             var b = MigrationNode.start("mig-b", onlyOthers, a.address())) {
+            assertResumesAtSource(a, b, MigrateRequest.of(COUNTER, "mig-b"), ManagementFailure.Reason.REMOTE_REFUSED,
+                    "node 'mig-a' may not migrate '" + COUNTER + "' on node 'mig-b' (migration PREPARE)");
+            assertEquals(1, b.management.refusedCount());
+            assertTrue(b.node.shells().stream().noneMatch(shell -> shell.profile().equals(COUNTER)), "nothing at B");
+        }
+    }
+
+    @Test
+    void shouldRefuseAStepThatNamesAnotherSourceThanTheNodeItCameFrom() throws Exception {
+        try (var b = MigrationNode.start("mig-b", MigrationNode.config().build())) {
+            var inbox = new CopyOnWriteArrayList<Message>();
+            Profile inboxProfile = Profile.of("inbox");
+            b.node.add(inboxProfile, () -> (message, context) -> inbox.add(message));
+            var step = new MigrationStep(MigrationStep.Phase.PREPARE, COUNTER, "mig-a",
+                    Profile.of("etherware.arrival", "id", "forged"), ReportingCounter.class.getName(), null, null, null, 0);
+            b.node.send(new Message(Management.profileOf("mig-b"), inboxProfile, b.node.clock().epochNanos(),
+                    Management.REQUEST_QOS, step, new MessageId("mig-a", 1), null)
+                    .withOrigin(Origin.direct("mig-c", true)));
+            Await.until("the answer", () -> inbox.size() == 1);
+            var failure = assertInstanceOf(ManagementFailure.class, inbox.getFirst().contents());
+            assertEquals(ManagementFailure.Reason.REMOTE_REFUSED, failure.reason());
+            assertTrue(failure.error().contains("says it comes from node 'mig-a' but arrived from node 'mig-c'"),
+                    failure.error());
+            assertEquals(1, b.management.refusedCount());
+        }
+    }
+
+    /**
+     * A stand-in target's management service on the source node answers the PREPARE step as if it
+     * came from {@code answeredFrom}; returns the steps it saw and the migration's failure.
+     */
+    private static List<MigrationStep.Phase> stepsSeenWhenAnsweredFrom(String answeredFrom,
+            ManagementFailure.Reason reason, String errorPart) throws Exception {
+        ManagementConfig quick = MigrationNode.config().migrationStepTimeout(Duration.ofMillis(300))
+                .handoverWait(Duration.ofMillis(600)).build();
+        try (var a = MigrationNode.start("mig-a", quick)) {
+            a.node.add(COUNTER, ReportingCounter::new);
+            var steps = new CopyOnWriteArrayList<MigrationStep.Phase>();
+            a.node.add(Management.profileOf("fake-target"), () -> (message, context) -> {
+                var step = (MigrationStep) message.contents();
+                steps.add(step.phase());
+                if (step.phase() == MigrationStep.Phase.PREPARE) {
+                    a.node.send(new Message(message.sender(), context.self(), a.node.clock().epochNanos(),
+                            Management.REQUEST_QOS, new MigrationStepDone(step.phase(), step.target(),
+                            ReportingCounter.class.getName(), 0, -1), new MessageId(answeredFrom, steps.size()),
+                            message.messageId()).withOrigin(Origin.direct(answeredFrom, true)));
+                }
+            });
+            ManagementFailure failure = failureOf(Management.migrate(a.node, "mig-a", COUNTER, "fake-target",
+                    Duration.ofSeconds(30)));
+            assertEquals(reason, failure.reason(), failure.error());
+            assertTrue(failure.error().contains(errorPart), failure.error());
+            assertInstanceOf(Endpoint.Local.class, a.node.registry().resolve(COUNTER), "the counter stayed at A");
+            return List.copyOf(steps);
+        }
+    }
+
+    @Test
+    void shouldTakeAStepsAnswerOnlyFromTheTargetNode() throws Exception {
+        // From the target: taken, so the migration goes on to INSTALL (unanswered here, so it fails).
+        assertEquals(List.of(MigrationStep.Phase.PREPARE, MigrationStep.Phase.INSTALL),
+                stepsSeenWhenAnsweredFrom("fake-target", ManagementFailure.Reason.TARGET_UNREACHABLE,
+                        "did not answer the INSTALL step"));
+        // From a third node that learned the step's id: refused, the migration stops there.
+        assertEquals(List.of(MigrationStep.Phase.PREPARE),
+                stepsSeenWhenAnsweredFrom("intruder", ManagementFailure.Reason.REMOTE_REFUSED,
+                        "came from node 'intruder', not from the target node 'fake-target'"));
     }
 }

@@ -20,6 +20,7 @@ import io.etherware.core.scheduler.Scheduler;
 import io.etherware.rt.scheduling.RealtimeScheduler;
 import io.etherware.rt.scheduling.RealtimeSchedulerConfig;
 import io.etherware.rt.scheduling.ThreadSchedulingRule;
+import java.io.IOException;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.List;
@@ -35,7 +36,10 @@ import org.junit.jupiter.api.io.TempDir;
 import org.junit.jupiter.params.ParameterizedTest;
 import org.junit.jupiter.params.provider.ValueSource;
 
-/** Upgrades through the management service: under a stream, from jars, rolled back, refused. */
+/**
+ * Upgrades through the management service: under a stream, from (signed) jars, rolled back,
+ * refused. The signatures themselves are {@link UpgradeSignatureTest}'s subject.
+ */
 class UpgradeTest {
 
     static final Profile COUNTER = Profile.parse("counter[loop=1]");
@@ -53,9 +57,11 @@ class UpgradeTest {
         };
     }
 
-    EtherwareNode node(String nodeId, Supplier<Scheduler> scheduler, Journal journal, String journalName) {
+    EtherwareNode node(String nodeId, Supplier<Scheduler> scheduler, Journal journal, String journalName)
+            throws IOException {
         var node = EtherwareNode.builder().nodeId(nodeId).scheduler(scheduler).build();
-        ManagementService.install(node, ManagementConfig.builder().allowDirectory(allowed).build());
+        ManagementService.install(node, ManagementConfig.builder().allowDirectory(allowed)
+                .trustedSigner(JarBuilder.testKey().certificate()).build());
         node.add(COUNTER, () -> new SequenceCounter(journalName));
         return node.start();
     }
@@ -99,7 +105,7 @@ class UpgradeTest {
     void shouldRunANewVersionOfAClassFromAnAllowlistedJarWhenTheJarAlsoCarriesTheStateRecord() throws Exception {
         // The jar carries its own SequenceCounterV2 (the node has one too) and a copy of the state
         // record: the jar's logic must win, the state record must stay the node's.
-        Path jar = JarBuilder.build(allowed.resolve("counter-v2-jar.jar"), Map.of(
+        Path jar = JarBuilder.buildSigned(allowed.resolve("counter-v2-jar.jar"), Map.of(
                 "example.counter.SequenceCounterV2", """
                         package example.counter;
                         public class SequenceCounterV2 extends SequenceCounter {
@@ -134,7 +140,7 @@ class UpgradeTest {
 
     @Test
     void shouldRollBackAndKeepServingWithNothingLostWhenTheNewLogicsRestoreThrowsUnderAStream() throws Exception {
-        Path jar = JarBuilder.build(allowed.resolve("counter-broken.jar"), Map.of(
+        Path jar = JarBuilder.buildSigned(allowed.resolve("counter-broken.jar"), Map.of(
                 "broken.CounterV3", """
                         package broken;
                         public class CounterV3 extends example.counter.SequenceCounter {
@@ -192,7 +198,7 @@ class UpgradeTest {
 
     @Test
     void shouldAnswerWithTheReasonWhenTheImplementationCannotBeUsed() throws Exception {
-        Path jar = JarBuilder.build(allowed.resolve("contract.jar"), Map.of(
+        Path jar = JarBuilder.buildSigned(allowed.resolve("contract.jar"), Map.of(
                 "contract.NotAComponent", "package contract; public class NotAComponent { }",
                 "contract.NoConstructor", """
                         package contract;

@@ -9,6 +9,7 @@ import io.etherware.examples.bench.UpgradeGap.Chain;
 import io.etherware.examples.bench.UpgradeGap.ChainState;
 import io.etherware.examples.bench.UpgradeGap.ChainV1;
 import io.etherware.examples.bench.UpgradeGap.Seq;
+import io.etherware.services.management.AccessRule;
 import io.etherware.services.management.Management;
 import io.etherware.services.management.ManagementConfig;
 import io.etherware.services.management.ManagementService;
@@ -18,6 +19,7 @@ import io.etherware.services.network.NetworkMessenger;
 import java.net.InetSocketAddress;
 import java.time.Duration;
 import java.util.Locale;
+import java.util.Set;
 import java.util.concurrent.TimeUnit;
 
 /**
@@ -41,6 +43,15 @@ final class MigrationGap implements GapMeasurement {
         return "migration";
     }
 
+    /**
+     * Lets {@code peer} migrate the loop to and from this node, over the bench's plain-TCP loopback
+     * links (which do not authenticate the peer).
+     */
+    private static ManagementConfig management(String peer) {
+        return ManagementConfig.builder().allowRemote(peer, Set.of(AccessRule.Operation.MIGRATE), LOOP.role())
+                .allowUnauthenticatedLinks(true).build();
+    }
+
     @Override
     public BenchRow measure(BenchConfig config, int repetitions) throws Exception {
         ContentsTypes.shared().register("bench.seq", Seq.class).register("bench.chainState", ChainState.class);
@@ -49,13 +60,13 @@ final class MigrationGap implements GapMeasurement {
         long held = 0;
         int warmup = Math.min(MAX_WARMUP, repetitions);
         Chain.breaks.set(0);
-        ManagementConfig management = ManagementConfig.builder().acceptRemoteRequests(true).build();
         try (var a = EtherwareNode.builder().nodeId("bench-mig-a").build().start();
                 var aNet = NetworkMessenger.start(a, loopback().build());
                 var b = EtherwareNode.builder().nodeId("bench-mig-b").build().start();
                 var bNet = NetworkMessenger.start(b, loopback().peer(aNet.localAddress()).build())) {
-            ManagementService.install(a, management, aNet);
-            ManagementService.install(b, management, bNet);
+            // Each node asks the other to move the loop to it, and receives it from the other.
+            ManagementService.install(a, management(b.nodeId()), aNet);
+            ManagementService.install(b, management(a.nodeId()), bNet);
             UpgradeGap.quietUpgradeLog(a.nodeId());
             UpgradeGap.quietUpgradeLog(b.nodeId());
             if (!aNet.awaitResolvable(Management.profileOf(b.nodeId()), CONNECT_TIMEOUT)

@@ -6,7 +6,6 @@ import io.etherware.examples.scenario.Schedulers;
 import io.etherware.pendulum.components.DspProxy;
 import io.etherware.pendulum.components.PendulumController;
 import io.etherware.services.management.Management;
-import io.etherware.services.management.ManagementConfig;
 import io.etherware.services.management.ManagementService;
 import io.etherware.services.network.NetworkConfig;
 import io.etherware.services.network.NetworkMessenger;
@@ -65,7 +64,8 @@ public final class ControlNodeCommand implements Callable<Integer> {
                         .listen(new InetSocketAddress("127.0.0.1", 0)).peer(plant).build());
                 ControlListeners.Registration registration = ControlListeners.register(listener,
                         CycleReport.forwarder(node))) {
-            ManagementService.install(node, ManagementConfig.builder().acceptRemoteRequests(true).build(), net);
+            // Node 1 asks this node to move the controller to it.
+            ManagementService.install(node, MigrateConfig.management(MigrateConfig.PLANT_NODE), net);
             node.add(PendulumController.DEFAULT_PROFILE,
                     () -> new ListenedController(ListenedController.configuration(listener)));
             // An idle spare that the scenario migrates once before the pendulum starts (WarmUp.REHEARSAL).

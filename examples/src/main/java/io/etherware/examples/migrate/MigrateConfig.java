@@ -1,7 +1,10 @@
 package io.etherware.examples.migrate;
 
+import io.etherware.services.management.AccessRule;
+import io.etherware.services.management.ManagementConfig;
 import java.nio.file.Path;
 import java.util.Objects;
+import java.util.Set;
 
 /**
  * Settings of the migration scenario (paper Section VI-C2). Immutable; validated at construction,
@@ -45,6 +48,16 @@ public record MigrateConfig(long durationNs, long periodNs, long migrateAtNs, do
     /** The defaults, or the migration two thirds into a run shorter than a minute. */
     public static MigrateConfig of(long durationNs, long periodNs, Path out) {
         return new MigrateConfig(durationNs, periodNs, Math.min(DEFAULT_MIGRATE_AT_NS, durationNs * 2 / 3), 0.02, out);
+    }
+
+    /**
+     * The management service of either node: {@code peer} may migrate controllers (the pendulum's
+     * and the warm-up's spare) to and from it. The scenario's two JVMs talk plain TCP on loopback,
+     * which does not authenticate the peer, so that is allowed explicitly.
+     */
+    public static ManagementConfig management(String peer) {
+        return ManagementConfig.builder().allowRemote(peer, Set.of(AccessRule.Operation.MIGRATE), "controller")
+                .allowUnauthenticatedLinks(true).build();
     }
 
     /** A copy with the migration at another time. */

@@ -23,7 +23,6 @@ import io.etherware.pendulum.plant.PendulumState;
 import io.etherware.rt.scheduling.RealtimeScheduler;
 import io.etherware.services.management.Implementation;
 import io.etherware.services.management.Management;
-import io.etherware.services.management.ManagementConfig;
 import io.etherware.services.management.ManagementService;
 import io.etherware.services.management.MigrateRequest;
 import io.etherware.services.management.MigrationResult;
@@ -126,8 +125,8 @@ public final class MigrateScenario {
             try (NetworkMessenger net = NetworkMessenger.start(rig.node(), NetworkConfig.builder()
                     .codec(WarmUp.warmedCodec(rig.node().nodeId())).listen(new InetSocketAddress("127.0.0.1", 0))
                     .build())) {
-                ManagementService.install(rig.node(), ManagementConfig.builder().acceptRemoteRequests(true).build(),
-                        net);
+                // Node 2 moves the controller here: its migration steps are requests from node 2.
+                ManagementService.install(rig.node(), MigrateConfig.management(MigrateConfig.CONTROL_NODE), net);
                 Notifier notifier = Notifier.install(rig.node(), NotifierConfig.defaults());
                 Path nodeLog = config.out().resolve("node-2.log");
                 Process node2 = startNode2(net.localAddress(), listenerName, nodeLog);

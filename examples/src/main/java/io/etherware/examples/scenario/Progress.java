@@ -48,6 +48,12 @@ public final class Progress {
         }
     }
 
+    /** Prints {@code text} as a line of its own (on a terminal, over the progress line). */
+    public void note(String text) {
+        out.println(terminal ? "\r" + text : text);
+        out.flush();
+    }
+
     /** Ends the progress line with the final state. */
     public void finish(double elapsedS, double theta2Rad, long misses) {
         lastPrintedS = Double.NEGATIVE_INFINITY;

@@ -29,6 +29,7 @@ import io.etherware.services.notifier.Notifier;
 import io.etherware.services.notifier.NotifierConfig;
 import io.etherware.services.notifier.Subscription;
 import io.etherware.services.notifier.SubscriptionStats;
+import java.io.IOException;
 import java.nio.file.Files;
 import java.time.Duration;
 import java.util.ArrayList;
@@ -46,8 +47,8 @@ import org.slf4j.LoggerFactory;
  * The runtime upgrade of paper Section VI-C1 (Fig. 10 and 11): the pendulum balanced by
  * controller V1 (soft gains) on Etherware-RT; at the configured time a HIGH management request
  * asks the node to replace it with controller V2 (tight gains), a class the management service
- * loads at runtime from a plugin jar in an allowlisted directory. V2 takes over V1's state at a
- * message boundary and the loop goes on.
+ * loads at runtime from a plugin jar in an allowlisted directory, signed for the run by a key the
+ * node trusts. V2 takes over V1's state at a message boundary and the loop goes on.
  *
  * <p>Not thread-safe: one thread runs it.
  */
@@ -68,14 +69,21 @@ public final class UpgradeScenario {
     }
 
     /**
-     * Runs the scenario.
+     * Runs the scenario: signs a copy of the plugin jar with a key made for the run (a node loads
+     * only plugins signed by a key it trusts), and has the node trust that key alone.
      *
      * @throws IllegalStateException if the plugin jar is missing (before anything starts)
+     * @throws IOException           if the jar cannot be signed (keytool and jarsigner need a JDK)
      */
-    public UpgradeOutcome run() throws InterruptedException {
+    public UpgradeOutcome run() throws InterruptedException, IOException {
         if (!Files.isRegularFile(config.jar())) {
             throw new IllegalStateException("the plugin jar " + config.jar().toAbsolutePath()
                     + " does not exist: build it with ./mvnw -pl examples -am -DskipTests package");
+        }
+        PluginSigner.Signed plugin = PluginSigner.signForThisRun(config.jar().toAbsolutePath(),
+                config.out().toAbsolutePath());
+        if (line != null) {
+            line.note(plugin.line());
         }
         long periodNs = config.periodNs();
         int capacity = Math.toIntExact(config.durationNs() / periodNs + SLACK);
@@ -92,7 +100,7 @@ public final class UpgradeScenario {
                 PendulumRig rig = new PendulumRig("upgrade", () -> scheduler, initial, v1, cycles)) {
             Notifier notifier = Notifier.install(rig.node(), NotifierConfig.defaults());
             ManagementService.install(rig.node(), ManagementConfig.builder()
-                    .allowDirectory(config.jar().toAbsolutePath().getParent()).build());
+                    .allowDirectory(plugin.jar().getParent()).trustedSigner(plugin.certificate()).build());
             PlantProbe probe = new PlantProbe(rig.board(), clock, periodNs, capacity, RunSummary.FALL_THRESHOLD_RAD,
                     events);
             long originNs;
@@ -115,7 +123,7 @@ public final class UpgradeScenario {
 
                 requestNs = clock.nanoTime();
                 events.add(requestNs, ScenarioEvent.Kind.UPGRADE, "upgrade request");
-                Implementation v2 = Implementation.fromJar(config.jar().toAbsolutePath(), UpgradeConfig.V2_CLASS)
+                Implementation v2 = Implementation.fromJar(plugin.jar(), UpgradeConfig.V2_CLASS)
                         .withConfiguration(ConfiguredController.configuration(listenerName));
                 try {
                     result = Management.upgrade(rig.node(), rig.node().nodeId(), PendulumController.DEFAULT_PROFILE,

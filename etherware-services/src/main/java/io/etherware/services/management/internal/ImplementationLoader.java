@@ -12,6 +12,7 @@ import java.nio.file.Files;
 import java.nio.file.InvalidPathException;
 import java.nio.file.NoSuchFileException;
 import java.nio.file.Path;
+import java.security.cert.X509Certificate;
 import java.util.List;
 import java.util.Objects;
 import java.util.concurrent.atomic.AtomicReference;
@@ -22,8 +23,10 @@ import org.slf4j.LoggerFactory;
 
 /**
  * Loads a new component logic for an upgrade: finds the class on the class path or in an
- * allowlisted jar (through a {@link JarClassLoader} of its own), checks the implementation
- * contract before running any of its code, and constructs the first instance.
+ * allowlisted jar signed by a trusted key (checked by a {@link PluginVerifier} before any of its
+ * classes is defined; loaded through a {@link JarClassLoader} of its own, from the verified copy),
+ * checks the implementation contract before running any of its code, and constructs the first
+ * instance.
  *
  * <p>Thread-safety: immutable; {@link #load} may be called from any thread. It reads files and
  * runs the class's static initializer and constructor, so call it off the dispatchers.
@@ -35,14 +38,17 @@ public final class ImplementationLoader {
             Pattern.compile("[\\p{L}_$][\\p{L}\\p{N}_$]*(\\.[\\p{L}_$][\\p{L}\\p{N}_$]*)*");
 
     private final List<Path> allowlist;
+    private final PluginVerifier verifier;
     private final ClassLoader classLoader;
 
     /**
-     * @param allowlist   canonical directories jars may come from
-     * @param classLoader the node's class loader: class-path implementations, parent of jar loaders
+     * @param allowlist      canonical directories jars may come from
+     * @param trustedSigners the certificates a jar's signers must be, or chain up to
+     * @param classLoader    the node's class loader: class-path implementations, parent of jar loaders
      */
-    public ImplementationLoader(List<Path> allowlist, ClassLoader classLoader) {
+    public ImplementationLoader(List<Path> allowlist, List<X509Certificate> trustedSigners, ClassLoader classLoader) {
         this.allowlist = List.copyOf(allowlist);
+        this.verifier = new PluginVerifier(trustedSigners);
         this.classLoader = Objects.requireNonNull(classLoader, "classLoader");
     }
 
@@ -81,9 +87,11 @@ public final class ImplementationLoader {
             if (jarPath != null) {
                 Path jar = allowedJar(jarPath);
                 source = jar.toString();
+                Path verified = verifier.verifiedCopy(jar);
                 try {
-                    jarLoader = new JarClassLoader(jar, classLoader);
-                } catch (IOException e) {
+                    jarLoader = new JarClassLoader(verified, jar, classLoader);
+                } catch (IOException | RuntimeException e) {
+                    PluginVerifier.deleteQuietly(verified);
                     throw new LoadFailure(Reason.CLASS_NOT_LOADABLE, "jar '" + jar + "' cannot be opened: " + e, e);
                 }
                 from = jarLoader;

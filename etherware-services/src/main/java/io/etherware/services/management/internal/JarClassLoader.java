@@ -1,13 +1,15 @@
 package io.etherware.services.management.internal;
 
 import io.etherware.core.message.Contents;
+import java.io.IOException;
 import java.net.MalformedURLException;
 import java.net.URL;
 import java.net.URLClassLoader;
 import java.nio.file.Path;
 
 /**
- * The class loader of one upgrade from a jar: looks in the jar first, so the jar may carry a new
+ * The class loader of one upgrade from a jar, reading the node's private, verified copy of it
+ * (deleted when the loader is closed). It looks in the jar first, so the jar may carry a new
  * version of a class the node already has, except for the types that must stay shared with the
  * node: the platform, slf4j and the Etherware core, rt and services packages always come from the
  * parent, and so does any {@link Contents} type the parent has (a state record or message contents
@@ -27,8 +29,24 @@ final class JarClassLoader extends URLClassLoader {
         "io.etherware.core.", "io.etherware.rt.", "io.etherware.services."
     };
 
-    JarClassLoader(Path jar, ClassLoader parent) throws MalformedURLException {
-        super("etherware-upgrade[" + jar.getFileName() + "]", new URL[] {jar.toUri().toURL()}, parent);
+    private final Path copy;
+
+    /**
+     * @param copy the verified copy to load from; this loader deletes it when closed
+     * @param jar  the jar it is a copy of, for the loader's name
+     */
+    JarClassLoader(Path copy, Path jar, ClassLoader parent) throws MalformedURLException {
+        super("etherware-upgrade[" + jar.getFileName() + "]", new URL[] {copy.toUri().toURL()}, parent);
+        this.copy = copy;
+    }
+
+    @Override
+    public void close() throws IOException {
+        try {
+            super.close();
+        } finally {
+            PluginVerifier.deleteQuietly(copy);
+        }
     }
 
     @Override

@@ -45,15 +45,18 @@ public final class MigrationSource {
     private final Kernel kernel;
     private final ManagementConfig config;
     private final NetworkMessenger network;
+    private final AccessControl access;
 
     /**
      * @param network the node's messenger, for the route to the target and its clock; null on a
      *                node without one (its migrations are refused)
+     * @param access  decides whether an answer really came from the target
      */
-    public MigrationSource(Kernel kernel, ManagementConfig config, NetworkMessenger network) {
+    public MigrationSource(Kernel kernel, ManagementConfig config, NetworkMessenger network, AccessControl access) {
         this.kernel = kernel;
         this.config = config;
         this.network = network;
+        this.access = access;
     }
 
     /**
@@ -179,6 +182,14 @@ public final class MigrationSource {
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
             throw new LoadFailure(Reason.SERVICE_FAILED, "interrupted during the " + step.phase() + " step");
+        }
+        // Taken from the connection, not from the answer's text: another node that learned the
+        // step's id must not be able to answer for the target.
+        String refusal = access.answerRefusal(reply, toNode, step);
+        if (refusal != null) {
+            log.warn("node {}: refused an answer ({}) to the {} step of '{}': {}", kernel.nodeId(), reply.messageId(),
+                    step.phase(), step.target(), refusal);
+            throw new LoadFailure(Reason.REMOTE_REFUSED, refusal);
         }
         return switch (reply.contents()) {
             case MigrationStepDone done -> done;

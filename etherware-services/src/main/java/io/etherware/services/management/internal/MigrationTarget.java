@@ -40,10 +40,13 @@ public final class MigrationTarget {
 
     private static final Logger log = LoggerFactory.getLogger(MigrationTarget.class);
 
-    private record Prepared(ImplementationLoader.Loaded loaded, Component instance, long loadNs) {
+    /** A prepared instance, bound to the node whose PREPARE made it. */
+    private record Prepared(String fromNode, ImplementationLoader.Loaded loaded, Component instance, long loadNs) {
     }
 
-    private record Arrived(Profile arrival, ImplementationLoader.Loaded loaded, CompletableFuture<Long> firstHandlingNs) {
+    /** An installed component, bound to the node whose migration it is. */
+    private record Arrived(String fromNode, Profile arrival, ImplementationLoader.Loaded loaded,
+                           CompletableFuture<Long> firstHandlingNs) {
     }
 
     private final Kernel kernel;
@@ -87,7 +90,7 @@ public final class MigrationTarget {
         }
         Component instance = loaded.factory().get();
         long loadNs = kernel.clock().nanoTime() - startNs;
-        Prepared previous = prepared.put(profile, new Prepared(loaded, instance, loadNs));
+        Prepared previous = prepared.put(profile, new Prepared(step.fromNode(), loaded, instance, loadNs));
         if (previous != null) {
             previous.loaded().discard();
         }
@@ -97,10 +100,15 @@ public final class MigrationTarget {
     /** Dispatcher: restores the state into the prepared instance and registers it, held. */
     public MigrationStepDone install(MigrationStep step) throws LoadFailure {
         Profile profile = step.target();
-        Prepared ready = prepared.remove(profile);
+        Prepared ready = prepared.get(profile);
         if (ready == null) {
             throw new LoadFailure(Reason.BAD_REQUEST, "'" + profile + "' was not prepared on node '" + kernel.nodeId()
                     + "'; send PREPARE first");
+        }
+        requireSameSource(step, ready.fromNode());
+        if (!prepared.remove(profile, ready)) {
+            throw new LoadFailure(Reason.BAD_REQUEST, "the preparation of '" + profile + "' on node '" + kernel.nodeId()
+                    + "' was replaced meanwhile; send PREPARE again");
         }
         long startNs = kernel.clock().nanoTime();
         String type = ready.loaded().type().getName();
@@ -131,7 +139,7 @@ public final class MigrationTarget {
             ready.loaded().discard();
             throw new LoadFailure(Reason.ROLLED_BACK, "onStart of " + type + " threw (see the log); it was removed");
         }
-        var arrival = new Arrived(step.arrival(), ready.loaded(), firstHandlingNs);
+        var arrival = new Arrived(step.fromNode(), step.arrival(), ready.loaded(), firstHandlingNs);
         arrived.put(profile, arrival);
         CompletableFuture.delayedExecutor(config.handoverWaitNs(), TimeUnit.NANOSECONDS)
                 .execute(() -> giveUp(profile, arrival));
@@ -144,8 +152,11 @@ public final class MigrationTarget {
      */
     public CompletableFuture<MigrationStepDone> handover(MigrationStep step) throws LoadFailure {
         Profile profile = step.target();
-        Arrived arrival = arrived.remove(profile);
-        if (arrival == null) {
+        Arrived arrival = arrived.get(profile);
+        if (arrival != null) {
+            requireSameSource(step, arrival.fromNode());
+        }
+        if (arrival == null || !arrived.remove(profile, arrival)) {
             throw new LoadFailure(Reason.BAD_REQUEST, "no migrated '" + profile + "' waits for its hand-over on node '"
                     + kernel.nodeId() + "' (not installed, or given up after handoverWait)");
         }
@@ -188,6 +199,18 @@ public final class MigrationTarget {
             kernel.removeAsync(arrival.arrival()).whenComplete((done, error) -> arrival.loaded().discard());
         } catch (RuntimeException e) {
             log.warn("node {}: removing migrated '{}' failed: {}", kernel.nodeId(), profile, e.toString());
+        }
+    }
+
+    /**
+     * Install and hand-over must come from the node whose PREPARE began the migration (its
+     * {@code fromNode}, checked against the connection by the service before this runs).
+     */
+    private void requireSameSource(MigrationStep step, String fromNode) throws LoadFailure {
+        if (!fromNode.equals(step.fromNode())) {
+            throw new LoadFailure(Reason.REMOTE_REFUSED, "the " + step.phase() + " step of '" + step.target()
+                    + "' came from node '" + step.fromNode() + "', but node '" + fromNode + "' is migrating it to node '"
+                    + kernel.nodeId() + "'; only that node continues its migration");
         }
     }
 
