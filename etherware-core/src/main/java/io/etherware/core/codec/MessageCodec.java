@@ -192,6 +192,10 @@ public final class MessageCodec {
     private Message read(XMLStreamReader2 stax) throws Exception {
         try (FromXmlParser parser = xmlFactory.createParser(stax)) {
             Message message = reader.readValue(parser);
+            if (message == null) {
+                // xsi:nil on the root: Jackson maps it to null without asking our deserializer.
+                throw new MessageFormatException("<message> must not be nil");
+            }
             // Read to the end, so trailing garbage or a second root is an error, not ignored.
             JsonToken trailing = parser.nextToken();
             if (trailing != null) {

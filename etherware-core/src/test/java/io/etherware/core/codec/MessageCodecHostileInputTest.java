@@ -127,6 +127,11 @@ class MessageCodecHostileInputTest {
                 bad("U+FFFF as a char", contents("<contents type=\"everything\"><c>\uFFFF</c></contents>"),
                         "not allowed in XML 1.0"),
                 bad("second root", utf8(ENVELOPE + TICK + "</message><message/>"), "multiple roots"),
+                bad("nil message", utf8("<message xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "
+                        + "xsi:nil=\"true\"/>"), "<message> must not be nil"),
+                bad("nil message before a second root", utf8("<message xmlns:xsi=\"http://www.w3.org/2001/"
+                        + "XMLSchema-instance\" xsi:nil=\"true\"/>" + ENVELOPE + TICK + "</message>"),
+                        "<message> must not be nil"),
                 bad("undeclared entity", contents(TICK.replace("<sequence>2<", "<sequence>&two;<")),
                         "Undeclared general entity"),
                 bad("null character reference", contents(TICK.replace("<sequence>2<", "<sequence>&#0;<")),

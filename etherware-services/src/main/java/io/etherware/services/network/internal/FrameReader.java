@@ -8,6 +8,7 @@ import java.io.DataInputStream;
 import java.io.EOFException;
 import java.io.IOException;
 import java.io.InputStream;
+import java.nio.BufferUnderflowException;
 import java.nio.ByteBuffer;
 import java.nio.charset.CharacterCodingException;
 import java.nio.charset.CodingErrorAction;
@@ -55,6 +56,15 @@ final class FrameReader {
                     + HexFormat.ofDelimiter(" ").formatHex(head) + ", not a HELLO frame");
         }
         ByteBuffer body = body(length - 1);
+        try {
+            return hello(body);
+        } catch (BufferUnderflowException e) {
+            throw new ProtocolException(CloseReason.BAD_HANDSHAKE, "not an Etherware peer: HELLO frame of " + length
+                    + " bytes is too short for its fields", e);
+        }
+    }
+
+    private static Frame.Hello hello(ByteBuffer body) throws ProtocolException {
         int magic = body.getInt();
         if (magic != Frame.MAGIC) {
             throw new ProtocolException(CloseReason.BAD_HANDSHAKE, "not an Etherware peer: magic 0x"

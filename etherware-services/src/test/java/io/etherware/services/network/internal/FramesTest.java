@@ -12,6 +12,7 @@ import java.io.ByteArrayInputStream;
 import java.io.ByteArrayOutputStream;
 import java.io.EOFException;
 import java.io.IOException;
+import java.nio.ByteBuffer;
 import java.nio.charset.StandardCharsets;
 import java.util.Arrays;
 import java.util.List;
@@ -102,5 +103,17 @@ class FramesTest {
         assertEquals(CloseReason.BAD_HANDSHAKE, error.reason());
         byte[] truncated = Arrays.copyOf(new byte[] {0, 0, 0, 40, Frame.HELLO, 0x45, 0x57}, 7);
         assertThrows(EOFException.class, new FrameReader(new ByteArrayInputStream(truncated), 4096)::readHello);
+    }
+
+    @Test
+    void shouldRefuseAHelloTooShortForItsFields() {
+        // A frame as long as the smallest HELLO, but its node id takes 5 of the 20 bytes that
+        // incarnation, clock and maxFrameBytes need.
+        var bytes = ByteBuffer.allocate(4 + 30).putInt(30).put(Frame.HELLO).putInt(Frame.MAGIC)
+                .putShort((short) Frame.VERSION).putShort((short) 6).put("node-1".getBytes(StandardCharsets.UTF_8));
+        var reader = new FrameReader(new ByteArrayInputStream(bytes.array()), 4096);
+        var error = assertThrows(ProtocolException.class, reader::readHello);
+        assertEquals(CloseReason.BAD_HANDSHAKE, error.reason());
+        assertTrue(error.getMessage().contains("HELLO frame of 30 bytes is too short"), error.getMessage());
     }
 }
