@@ -22,6 +22,8 @@ final class RawPeer implements AutoCloseable {
     static final byte HELLO = 1;
     static final byte RESUME = 2;
     static final byte DATA = 3;
+    static final byte ACK = 4;
+    static final byte HEARTBEAT = 5;
     static final byte ANNOUNCE = 6;
     static final byte REJECT = 9;
     static final byte BYE = 10;
@@ -130,6 +132,75 @@ final class RawPeer implements AutoCloseable {
         return nodeStreamId;
     }
 
+    /** Where the node's streams with this peer stand, from its RESUME. */
+    record Resume(long streamId, long knownStreamId, long receivedCount) {
+    }
+
+    /** Sends HELLO as {@code nodeId}, reads the node's HELLO and RESUME; our RESUME is the caller's to send. */
+    Resume introduce(String nodeId) throws IOException {
+        hello(MAGIC, 1, nodeId);
+        expect(HELLO);
+        var body = java.nio.ByteBuffer.wrap(expect(RESUME).body());
+        return new Resume(body.getLong(), body.getLong(), body.getLong());
+    }
+
+    void resume(long streamId, long knownStreamId, long receivedCount) throws IOException {
+        frame(RESUME, body(out -> {
+            out.writeLong(streamId);
+            out.writeLong(knownStreamId);
+            out.writeLong(receivedCount);
+        }));
+    }
+
+    void ack(long count) throws IOException {
+        frame(ACK, body(out -> out.writeLong(count)));
+    }
+
+    void heartbeat() throws IOException {
+        frame(HEARTBEAT, new byte[0]);
+    }
+
+    void announce(long version, String... profiles) throws IOException {
+        frame(ANNOUNCE, body(out -> {
+            out.writeLong(version);
+            out.writeInt(profiles.length);
+            for (String profile : profiles) {
+                string(out, profile);
+            }
+        }));
+    }
+
+    void bye(int code, String text) throws IOException {
+        frame(BYE, body(out -> {
+            out.writeByte(code);
+            string(out, text);
+        }));
+    }
+
+    /** A message frame with every header field chosen by the caller. */
+    void data(long seq, long ack, int hops, byte[] xml) throws IOException {
+        frame(DATA, body(out -> {
+            out.writeLong(seq);
+            out.writeLong(ack);
+            out.writeByte(hops);
+            out.write(xml);
+        }));
+    }
+
+    /** The seq of a DATA frame read back. */
+    static long dataSeq(Received frame) {
+        return java.nio.ByteBuffer.wrap(frame.body()).getLong();
+    }
+
+    /** The message XML of a DATA frame read back. */
+    static String dataXml(Received frame) {
+        return new String(frame.body(), 17, frame.body().length - 17, StandardCharsets.UTF_8);
+    }
+
+    void soTimeoutMs(int ms) throws IOException {
+        socket.setSoTimeout(ms);
+    }
+
     void data(long seq, String xml) throws IOException {
         frame(DATA, body(out -> {
             out.writeLong(seq);
@@ -166,6 +237,27 @@ final class RawPeer implements AutoCloseable {
             } catch (SocketException e) {
                 return frames; // reset: closed as well
             }
+        }
+    }
+
+    /**
+     * Reads raw bytes until the node closes (at most {@code limit} kept), for a node that may not
+     * answer in frames at all (a TLS port answering plain TCP with an alert).
+     */
+    byte[] readRawUntilClosed(int limit) throws IOException {
+        var kept = new ByteArrayOutputStream();
+        byte[] chunk = new byte[4096];
+        while (true) {
+            int read;
+            try {
+                read = in.read(chunk);
+            } catch (SocketException e) {
+                read = -1; // reset: closed as well
+            }
+            if (read < 0) {
+                return kept.toByteArray();
+            }
+            kept.write(chunk, 0, Math.min(read, Math.max(0, limit - kept.size())));
         }
     }
 
