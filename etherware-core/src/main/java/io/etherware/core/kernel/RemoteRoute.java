@@ -16,4 +16,14 @@ public interface RemoteRoute {
 
     /** Takes the message for transmission. Must not block. */
     void deliver(Message message);
+
+    /**
+     * Whether node {@code nodeId} is one this route leads to (or may lead to next, e.g. a node
+     * waiting to take a profile over): a reply from the network to a request sent along this route
+     * is taken only from such a node, so no third node can answer or fail another's requests. The
+     * default, for routes that do not know their nodes, accepts any.
+     */
+    default boolean isServedBy(String nodeId) {
+        return true;
+    }
 }

@@ -18,7 +18,6 @@ import java.util.ArrayList;
 import java.util.List;
 import java.util.concurrent.TimeUnit;
 import org.junit.jupiter.api.AfterEach;
-import org.junit.jupiter.api.Disabled;
 import org.junit.jupiter.api.Test;
 
 /**
@@ -146,14 +145,11 @@ class HostileFloodTest {
      * reader is busy with their frames when the target gives up on them. Whether the reader is
      * inside a read at that moment is a race; five hogs in a row make losing it near certain.
      */
-    @Disabled("BUG: Connection.abort sets closing; a reader busy with a frame then leaves readLoop (while !closing)"
-            + " and the writer's IOException is ignored (if !closing), so close() never runs: no NOT_READING"
-            + " counted, the peer stays 'connected' with its queue held")
     @Test
     void shouldCloseEveryPeerThatNeverReadsWhileItKeepsTheReaderBusy() throws Exception {
         startTheLegitimateTraffic(quick().maxQueuedBytesPerPeer(2 * MiB));
         int hogs = 5;
-        int most = 200; // 60 MiB per hog at most; the target closes it long before
+        int most = 5_000; // bounded by the 10 s deadline too; the target closes it long before either
         for (int round = 0; round < hogs; round++) {
             String nodeId = "hog-" + round;
             byte[] request = largeRequest(nodeId);

@@ -17,7 +17,6 @@ import java.util.concurrent.Semaphore;
 import java.util.concurrent.TimeUnit;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.BeforeEach;
-import org.junit.jupiter.api.Disabled;
 import org.junit.jupiter.api.Test;
 
 /**
@@ -169,9 +168,6 @@ class HostileStreamTest {
      * the replies were not written yet: the legitimate peer must get them (at most what the target
      * had written and not seen acknowledged may fail, at once); none hangs until its timeout.
      */
-    @Disabled("BUG: Peer.activate refuses the impostor but resets the stream under the legitimate connection, which"
-            + " stays active; its next replies carry seq 0.. and the legitimate peer drops them as duplicates, so"
-            + " those requests hang until their timeout")
     @Test
     void shouldNotLoseRepliesToTheLegitPeerWhenAnImpostorsResumeBelowWhatWasAcknowledgedIsRefused()
             throws Exception {
@@ -235,8 +231,6 @@ class HostileStreamTest {
      * is unknown, and the requests they answer must fail at once, not hang until their timeout.
      * The echo is held until the impostor has the connection, so the replies are written to it.
      */
-    @Disabled("BUG: Engine.lost reports a lost message to its sender; for a reply that is the responder, so the"
-            + " requester is never told and waits for its full timeout")
     @Test
     void shouldFailRatherThanHangTheRequestsWhoseRepliesAPoisonedStreamLost() throws Exception {
         holdTheEcho();

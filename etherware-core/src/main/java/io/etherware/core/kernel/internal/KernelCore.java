@@ -6,6 +6,7 @@ import io.etherware.core.component.RequestFailedException;
 import io.etherware.core.component.RequestFailedException.Reason;
 import io.etherware.core.component.Shell;
 import io.etherware.core.kernel.Endpoint;
+import io.etherware.core.kernel.ProfileResolutionException;
 import io.etherware.core.kernel.Kernel;
 import io.etherware.core.kernel.NodeConfig;
 import io.etherware.core.kernel.NodeStats;
@@ -102,7 +103,7 @@ public final class KernelCore implements Kernel, JobRunner {
         this.scheduler = Objects.requireNonNull(config.scheduler().get(), "the scheduler factory returned null");
         // Ties in arrival order, whatever the scheduler's comparator does with them.
         this.urgency = scheduler.urgency().thenComparingLong(Job::sequence);
-        this.requests = new RequestTable(nodeId, this::deliverOutcome);
+        this.requests = new RequestTable(nodeId, this::deliverOutcome, this::mayAnswer);
     }
 
     /** Registers the kernel's notices ({@code undeliverable}, {@code request-failed}) in {@code types}. */
@@ -207,6 +208,19 @@ public final class KernelCore implements Kernel, JobRunner {
         Origin origin = message.origin();
         if (origin != null && origin.wireBytes() > 0) {
             inboundBytes.computeIfAbsent(origin.viaNodeId(), id -> new LongAdder()).add((long) sign * origin.wireBytes());
+        }
+    }
+
+    /**
+     * Whether node {@code nodeId} may answer {@code request}: its profile resolves to a route that
+     * leads there (or will, when a node waiting to take it over does).
+     */
+    private boolean mayAnswer(Message request, String nodeId) {
+        try {
+            return registry.resolve(request.profile()) instanceof Endpoint.Remote remote
+                    && remote.route().isServedBy(nodeId);
+        } catch (ProfileResolutionException e) {
+            return false;
         }
     }
 

@@ -6,6 +6,7 @@ import io.etherware.core.kernel.RequestFailed;
 import io.etherware.core.kernel.Undeliverable;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageId;
+import io.etherware.core.message.Origin;
 import java.util.LinkedHashSet;
 import java.util.Map;
 import java.util.concurrent.ConcurrentHashMap;
@@ -13,6 +14,7 @@ import java.util.concurrent.RejectedExecutionException;
 import java.util.concurrent.ScheduledThreadPoolExecutor;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.LongAdder;
+import java.util.function.BiPredicate;
 import java.util.function.Consumer;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -41,14 +43,18 @@ final class RequestTable {
     private final ScheduledThreadPoolExecutor timer;
     private final LongAdder timeouts = new LongAdder();
     private final LongAdder lateReplies = new LongAdder();
+    private final LongAdder foreignReplies = new LongAdder();
+    /** Whether a node (by id) may answer a request (its message): where the request was routed. */
+    private final BiPredicate<Message, String> mayAnswer;
 
     /**
      * @param outcomeSink hands a settled-to-be request to its requester (a job for a component,
      *                    or {@link PendingRequest#settle()} directly)
      */
-    RequestTable(String nodeId, Consumer<PendingRequest> outcomeSink) {
+    RequestTable(String nodeId, Consumer<PendingRequest> outcomeSink, BiPredicate<Message, String> mayAnswer) {
         this.nodeId = nodeId;
         this.outcomeSink = outcomeSink;
+        this.mayAnswer = mayAnswer;
         this.timer = new ScheduledThreadPoolExecutor(1, runnable -> {
             Thread thread = new Thread(runnable, "etherware-timer-" + nodeId);
             thread.setDaemon(true);
@@ -96,6 +102,22 @@ final class RequestTable {
      */
     boolean interceptReply(Message reply) {
         MessageId requestId = reply.correlationId();
+        Origin origin = reply.origin();
+        if (origin != null) {
+            PendingRequest waiting = pending.get(requestId);
+            if (waiting != null && !mayAnswer.test(waiting.request, origin.nodeId())) {
+                // Correlation ids are guessable: only a node the request was routed to answers it.
+                long count = foreignReplies.sum();
+                foreignReplies.increment();
+                if (count < 10 || count % 1000 == 0) {
+                    log.warn("node {}: dropped {} from node '{}' (via '{}') to request {} to '{}': that node does not"
+                            + " host '{}' here ({} such so far)", nodeId, reply.contents().getClass().getSimpleName(),
+                            origin.nodeId(), origin.viaNodeId(), requestId, waiting.request.profile(),
+                            waiting.request.profile(), count + 1);
+                }
+                return true;
+            }
+        }
         PendingRequest entry = pending.remove(requestId);
         if (entry != null) {
             cancelTimeout(entry);

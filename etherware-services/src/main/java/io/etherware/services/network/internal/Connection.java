@@ -209,6 +209,10 @@ final class Connection implements Runnable {
             close(e.reason(), e.getMessage());
         } catch (ProtocolException e) {
             close(e.reason(), e.getMessage());
+            if (e instanceof Peer.StreamResetException reset) {
+                engine.reportLost(reset.lost, peer.nodeId, "the streams with node '" + peer.nodeId
+                        + "' disagreed; its fate is unknown");
+            }
         } catch (SocketTimeoutException e) {
             close(CloseReason.HEARTBEAT_TIMEOUT, "nothing from node '" + peer.nodeId + "' for "
                     + TimeUnit.NANOSECONDS.toMillis(engine.config().heartbeatTimeoutNs()) + " ms");
@@ -625,10 +629,7 @@ final class Connection implements Runnable {
             } catch (IOException e) {
                 // Closed either way.
             }
-            Thread reading = readerThread;
-            if (reading == null || !reading.isAlive()) {
-                close(reason, detail); // nobody reads this connection to notice
-            }
+            close(reason, detail); // once: whichever of this and the woken threads comes first
         });
     }
 

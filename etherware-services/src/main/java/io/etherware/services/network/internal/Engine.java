@@ -370,6 +370,11 @@ public final class Engine {
      */
     void lost(Message message, String reason) {
         counters.undeliverable.increment();
+        if (message.isReply() && !(message.contents() instanceof Undeliverable)
+                && !(message.contents() instanceof RequestFailed)) {
+            failRequestOf(message, reason);
+            return;
+        }
         if (message.sender() == null || message.contents() instanceof Undeliverable
                 || message.contents() instanceof RequestFailed) {
             log.warn("node {}: message {} to '{}' is lost: {}", nodeId, message.messageId(), message.profile(), reason);
@@ -384,6 +389,25 @@ public final class Engine {
         } catch (RuntimeException e) {
             log.warn("node {}: could not tell '{}' that message {} is lost ({}): {}", nodeId, message.sender(),
                     message.messageId(), reason, e.toString());
+        }
+    }
+
+    /**
+     * A reply that cannot be delivered: its requester, not its responder, must hear of it, or the
+     * request hangs until its timeout. The requester's node gets a {@link RequestFailed} for the
+     * request (queued for that node like any message; if it cannot go either, a log line).
+     */
+    private void failRequestOf(Message reply, String reason) {
+        String responder = reply.sender() == null ? nodeId : reply.sender().toString();
+        log.debug("node {}: reply {} to request {} is lost ({}); failing the request at its requester", nodeId,
+                reply.messageId(), reply.correlationId(), reason);
+        try {
+            kernel.send(new Message(reply.profile(), reply.sender(), kernel.clock().epochNanos(), reply.qos(),
+                    new RequestFailed(reply.correlationId().toString(), responder, "its reply was lost: " + reason),
+                    kernel.newMessageId(), reply.correlationId()));
+        } catch (RuntimeException e) {
+            log.warn("node {}: could not tell the requester of {} that its reply is lost ({}): {}", nodeId,
+                    reply.correlationId(), reason, e.toString());
         }
     }
 
@@ -418,6 +442,11 @@ public final class Engine {
             @Override
             public void deliver(Message message) {
                 peer.enqueue(message);
+            }
+
+            @Override
+            public boolean isServedBy(String nodeId) {
+                return nodeId.equals(peerId);
             }
 
             @Override

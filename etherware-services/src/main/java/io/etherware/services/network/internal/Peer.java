@@ -266,7 +266,11 @@ final class Peer {
                                 + Long.toHexString(streamId) + ", but had acknowledged " + ackedCount;
                     }
                     if (refusal != null) {
-                        return new Activation(false, candidate, resetStream(), false, refusal);
+                        // With a connection in use, the candidate is the one that lies (an
+                        // impostor, on a plain link): refuse it and leave the stream alone.
+                        // Without one, start the stream afresh so the next connection agrees.
+                        List<InFlight> unknown = current != null && current != candidate ? List.of() : resetStream();
+                        return new Activation(false, candidate, unknown, false, refusal);
                     }
                     releaseInFlightBelow(theirs.receivedCount());
                     ackedCount = Math.max(ackedCount, theirs.receivedCount());
@@ -471,8 +475,8 @@ final class Peer {
             lock.unlock();
         }
         if (error != null) {
-            engine.reportLost(lost, nodeId, "the streams with node '" + nodeId + "' disagreed; its fate is unknown");
-            throw new ProtocolException(CloseReason.SEQUENCE_ERROR, error);
+            // Reported once the connection is closed: notices to the peer then wait for the next one.
+            throw new StreamResetException(error, lost);
         }
     }
 
@@ -617,6 +621,16 @@ final class Peer {
             return new int[] {queue.size(), inFlight.size()};
         } finally {
             lock.unlock();
+        }
+    }
+
+    /** The stream with the peer contradicted itself and was started afresh; {@link #lost} are of unknown fate. */
+    static final class StreamResetException extends ProtocolException {
+        final transient List<InFlight> lost;
+
+        StreamResetException(String message, List<InFlight> lost) {
+            super(CloseReason.SEQUENCE_ERROR, message);
+            this.lost = lost;
         }
     }
 }

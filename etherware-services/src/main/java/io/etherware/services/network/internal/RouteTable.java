@@ -62,6 +62,8 @@ final class RouteTable {
         /** Nodes announcing the profile, in the order they claimed it; guarded by the table. */
         final LinkedHashMap<String, Peer> hosts = new LinkedHashMap<>();
         volatile Peer owner;
+        /** The ids of {@link #hosts}, for readers outside the table's lock. */
+        volatile Set<String> hostIds = Set.of();
         /** Whether the registry holds this route; guarded by the table. */
         boolean registered;
         boolean shadowLogged;
@@ -77,6 +79,11 @@ final class RouteTable {
                 throw new IllegalStateException("no connected node announces '" + profile + "' now");
             }
             to.enqueue(message);
+        }
+
+        @Override
+        public boolean isServedBy(String nodeId) {
+            return hostIds.contains(nodeId);
         }
 
         @Override
@@ -165,6 +172,7 @@ final class RouteTable {
     }
 
     private void sync(ProfileRoute route) {
+        route.hostIds = Set.copyOf(route.hosts.keySet());
         if (route.hosts.isEmpty()) {
             route.owner = null;
             if (route.registered && isRegistered(route)) {
