@@ -319,6 +319,11 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
         return core.stats();
     }
 
+    /** The node's scheduler (e.g. to learn the priorities of its dispatchers). */
+    public Scheduler scheduler() {
+        return core.scheduler();
+    }
+
     @Override
     public long queuedBytesFrom(String viaNodeId) {
         return core.queuedBytesFrom(viaNodeId);

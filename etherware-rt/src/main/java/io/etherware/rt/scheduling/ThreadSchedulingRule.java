@@ -35,6 +35,29 @@ public record ThreadSchedulingRule(List<DispatcherSpec> dispatchers) {
     /** More dispatchers than this is a configuration mistake, not a design. */
     public static final int MAX_DISPATCHERS = 64;
 
+    /**
+     * The policy {@code levels} real-time priorities above this rule's highest real-time dispatcher
+     * (at most 99), with its policy; {@link ThreadPolicy#NON_REALTIME} when no dispatcher is
+     * real-time. The node's priority map (board, Notifier, network I/O, dispatchers) is built from
+     * it: network I/O one level above, the Notifier two.
+     */
+    public ThreadPolicy above(int levels) {
+        if (levels < 0) {
+            throw new IllegalArgumentException("levels=" + levels + " must be >= 0");
+        }
+        ThreadPolicy highest = ThreadPolicy.NON_REALTIME;
+        for (DispatcherSpec spec : dispatchers) {
+            ThreadPolicy policy = spec.policy();
+            if (policy.isRealtime() && policy.priority() >= highest.priority()) {
+                highest = policy;
+            }
+        }
+        if (!highest.isRealtime()) {
+            return ThreadPolicy.NON_REALTIME;
+        }
+        return new ThreadPolicy(highest.policy(), Math.min(highest.priority() + levels, MAX_REALTIME_PRIORITY));
+    }
+
     public ThreadSchedulingRule {
         Objects.requireNonNull(dispatchers, "dispatchers");
         if (dispatchers.isEmpty() || dispatchers.size() > MAX_DISPATCHERS) {

@@ -1,6 +1,9 @@
 package io.etherware.services.network;
 
 import io.etherware.core.codec.MessageCodec;
+import io.etherware.rt.platform.CpuSet;
+import io.etherware.rt.platform.ThreadPolicy;
+import io.etherware.rt.scheduling.ThreadSchedulingRule;
 import io.etherware.services.time.NetworkTime;
 import java.net.InetAddress;
 import java.net.InetSocketAddress;
@@ -49,6 +52,12 @@ import java.util.Objects;
  *                                  handled or passed on) beyond which it stops reading from that
  *                                  peer until they drain: TCP then slows the peer down
  * @param announcePolicy            which application profiles a peer may announce here
+ * @param threadPolicy              the OS policy and priority of the connections' reader and writer
+ *                                  threads, or null for the default: with a {@link
+ *                                  io.etherware.rt.scheduling.RealtimeScheduler}, SCHED_FIFO one level
+ *                                  above its highest dispatcher (so a thread that carries HIGH
+ *                                  messages never waits for LOW work), otherwise ordinary threads
+ * @param cpus                      the CPUs of the reader and writer threads
  * @param insecure                  whether plain, unauthenticated links beyond loopback were chosen
  *                                  on purpose ({@link Builder#insecure}); without it a messenger
  *                                  whose factory does not authenticate peers only listens on and
@@ -61,7 +70,8 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
                             long reconnectMaxBackoffNs, double reconnectJitter, long peerDownGraceNs,
                             long timeProbeIntervalNs, int timeProbeBurst, int timeWindowSize, int maxConnections,
                             int maxHops, int maxPendingHandshakes, long maxQueuedBytesPerPeer,
-                            long maxInboundBytesPerPeer, AnnouncePolicy announcePolicy, boolean insecure) {
+                            long maxInboundBytesPerPeer, AnnouncePolicy announcePolicy, ThreadPolicy threadPolicy,
+                            CpuSet cpus, boolean insecure) {
 
     /** Default {@link #maxFrameBytes}: 1 MiB. */
     public static final int DEFAULT_MAX_FRAME_BYTES = 1 << 20;
@@ -101,6 +111,13 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
         requireRange("maxQueuedBytesPerPeer", maxQueuedBytesPerPeer, 2L * maxFrameBytes, 1L << 40);
         requireRange("maxInboundBytesPerPeer", maxInboundBytesPerPeer, 2L * maxFrameBytes, 1L << 40);
         Objects.requireNonNull(announcePolicy, "announcePolicy=null: use AnnouncePolicy.any()");
+        Objects.requireNonNull(cpus, "cpus=null: use CpuSet.inherit()");
+        if (threadPolicy != null && threadPolicy.isRealtime()
+                && (threadPolicy.priority() < ThreadSchedulingRule.MIN_REALTIME_PRIORITY
+                || threadPolicy.priority() > ThreadSchedulingRule.MAX_REALTIME_PRIORITY)) {
+            throw new IllegalArgumentException("threadPolicy.priority=" + threadPolicy.priority() + " must be in "
+                    + ThreadSchedulingRule.MIN_REALTIME_PRIORITY + ".." + ThreadSchedulingRule.MAX_REALTIME_PRIORITY);
+        }
         if (!connectionFactory.authenticatesPeers() && !insecure) {
             requireLoopback("listenAddress", listenAddress);
             for (InetSocketAddress peer : peers) {
@@ -158,8 +175,10 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
      * 2 s, dial within 2 s; redial after 50 ms doubling to 5 s, with 20 % jitter; a peer down for
      * 10 s loses its messages and routes; NetworkTime burst of 8 exchanges, then one per second,
      * filter window {@value NetworkTime#DEFAULT_WINDOW_SIZE}; 64 connections, of which 16 in their
-     * handshake; 4 relays; 64 MiB queued or unacknowledged per peer, 64 MiB of a peer's messages held here; any peer may announce any
-     * application profile; not insecure (plain TCP only on loopback).
+     * handshake; 4 relays; 64 MiB queued or unacknowledged per peer, 64 MiB of a peer's messages
+     * held here; any peer may announce any application profile; reader and writer threads one real-time level above the highest
+     * dispatcher of a real-time scheduler (ordinary threads with another scheduler), every CPU; not
+     * insecure (plain TCP only on loopback).
      *
      * <p>Not thread-safe; use it on one thread.
      */
@@ -188,6 +207,8 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
         private long maxQueuedBytesPerPeer = 64L << 20;
         private long maxInboundBytesPerPeer = 64L << 20;
         private AnnouncePolicy announcePolicy = AnnouncePolicy.any();
+        private ThreadPolicy threadPolicy;
+        private CpuSet cpus = CpuSet.inherit();
         private boolean insecure;
 
         Builder() {
@@ -313,6 +334,26 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
             return this;
         }
 
+        /**
+         * The OS policy and priority of the reader and writer threads ({@link ThreadPolicy#NON_REALTIME}
+         * for ordinary threads), instead of the default that follows the node's scheduler.
+         */
+        public Builder threads(ThreadPolicy policy) {
+            threadPolicy = Objects.requireNonNull(policy, "policy");
+            return this;
+        }
+
+        /**
+         * The CPUs of the reader and writer threads. Do not pin ordinary (non-real-time) threads
+         * to CPUs where real-time threads work: starved there, a Java thread can hold the whole
+         * JVM at a safepoint (seen with a SCHED_FIFO dispatcher spinning for the safepoint while
+         * the pinned ordinary thread it waited for never ran).
+         */
+        public Builder threadCpus(CpuSet value) {
+            cpus = value;
+            return this;
+        }
+
         /** Which application profiles peers may announce to this node. */
         public Builder announcePolicy(AnnouncePolicy value) {
             announcePolicy = value;
@@ -339,7 +380,7 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
                     queueCapacity, windowMessages, heartbeatIntervalNs, heartbeatTimeoutNs, handshakeTimeoutNs,
                     connectTimeoutNs, reconnectInitialBackoffNs, reconnectMaxBackoffNs, reconnectJitter, peerDownGraceNs,
                     timeProbeIntervalNs, timeProbeBurst, timeWindowSize, maxConnections, maxHops, maxPendingHandshakes,
-                    maxQueuedBytesPerPeer, maxInboundBytesPerPeer, announcePolicy, insecure);
+                    maxQueuedBytesPerPeer, maxInboundBytesPerPeer, announcePolicy, threadPolicy, cpus, insecure);
         }
     }
 }

@@ -4,6 +4,7 @@ import io.etherware.core.kernel.EtherwareNode;
 import io.etherware.core.kernel.Kernel;
 import io.etherware.core.kernel.RemoteRoute;
 import io.etherware.core.message.Profile;
+import io.etherware.rt.platform.ThreadPolicy;
 import io.etherware.services.network.internal.Engine;
 import io.etherware.services.time.NetworkTime;
 import java.io.IOException;
@@ -42,10 +43,15 @@ import java.util.Optional;
  * node's clock by {@link #networkTime()}.
  *
  * <p>Threading contract: every method may be called from any thread. Sending through the routes
- * never blocks: on an idle connection the sending thread writes the frame itself (which the
- * acknowledged-stream bookkeeping proves cannot block), otherwise it queues. The messenger runs
- * on platform threads of its own: an acceptor, a control thread, and a reader and a writer per
- * connection, so a slow or dead peer holds up nobody else. Start the node before the messenger
+ * never blocks: the sending thread encodes the message; on an idle connection it writes the frame
+ * itself (which the acknowledged-stream bookkeeping proves cannot block), otherwise it queues. The
+ * messenger runs on platform threads of its own: an acceptor, a control thread, and a reader and a
+ * writer per connection, so a slow or dead peer holds up nobody else. A connection's reader
+ * decodes each message and hands it to the kernel, which queues it for a dispatcher, or, for a
+ * reply to a request whose requester waits on its future, completes that future on the reader
+ * thread itself. Once a connection is established its reader and writer run at
+ * {@link #ioThreadPolicy()}, above the node's dispatchers by default, so LOW work never holds up
+ * the threads that carry HIGH messages. Start the node before the messenger
  * (messages may arrive at once) and close the messenger before the node; a node that closes
  * first closes its messenger too.
  */
@@ -126,6 +132,15 @@ public final class NetworkMessenger implements AutoCloseable {
     /** The clock offsets to the peers, and the time stamp translation. */
     public NetworkTime networkTime() {
         return engine.networkTime();
+    }
+
+    /**
+     * The OS policy its reader and writer threads ask for: {@link NetworkConfig#threadPolicy()}, or
+     * by default one real-time level above the highest dispatcher of the node's
+     * {@code RealtimeScheduler} (ordinary threads with another scheduler).
+     */
+    public ThreadPolicy ioThreadPolicy() {
+        return engine.ioThreadPolicy();
     }
 
     /** The counters now. */

@@ -44,7 +44,7 @@ import org.slf4j.LoggerFactory;
  * records the lateness (send time minus release) of every Tick sent.
  *
  * <p>One platform thread serves every subscription from a priority queue of next releases. It
- * runs at the OS priority of {@link NotifierConfig#threadPolicy()} (default SCHED_FIFO 81, above
+ * runs at the OS priority of {@link NotifierConfig#threadPolicy()} (default SCHED_FIFO 82, above
  * every dispatcher of Table II; refused, it warns once and runs on), parks until each release and,
  * if configured, spins the last few µs.
  *

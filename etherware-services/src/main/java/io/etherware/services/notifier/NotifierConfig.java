@@ -10,12 +10,13 @@ import java.util.Objects;
  * How a {@link Notifier} runs: its profile, its thread's OS policy and CPUs, and the optional spin
  * before each release. Immutable; validated when built, naming the wrong field.
  *
- * <p>Defaults ({@link #defaults()}): SCHED_FIFO {@value #DEFAULT_PRIORITY}, one level above the
- * highest dispatcher of the paper's Table II ({@link ThreadSchedulingRule#HIGH_PRIORITY}), so a
- * Tick is released before any component work that it activates can delay it; every CPU; no spin.
+ * <p>Defaults ({@link #defaults()}): SCHED_FIFO {@value #DEFAULT_PRIORITY}, two levels above the
+ * highest dispatcher of the paper's Table II ({@link ThreadSchedulingRule#HIGH_PRIORITY}) and one
+ * above the network's threads, so a Tick is released before any component work that it activates
+ * (or any message in transit) can delay it; every CPU; no spin.
  * The priority is a request: refused (no CAP_SYS_NICE, say), the platform warns once with the
  * errno and the fix, and the Notifier runs on at the priority it has. Use {@link #above} to sit
- * one level above another rule, and {@link #withThreadPolicy} with
+ * two levels above another rule, and {@link #withThreadPolicy} with
  * {@link ThreadPolicy#NON_REALTIME} to ask for nothing.
  *
  * @param profile      the profile of the Notifier's component, or null for
@@ -31,8 +32,11 @@ import java.util.Objects;
 public record NotifierConfig(Profile profile, ThreadPolicy threadPolicy, CpuSet cpus, long spinNs,
                              String threadName) {
 
-    /** Default SCHED_FIFO priority: one above Table II's highest dispatcher. */
-    public static final int DEFAULT_PRIORITY = ThreadSchedulingRule.HIGH_PRIORITY + 1;
+    /**
+     * Default SCHED_FIFO priority: two above Table II's highest dispatcher, with the network's
+     * reader and writer threads between them (the node's priority map is in the README).
+     */
+    public static final int DEFAULT_PRIORITY = ThreadSchedulingRule.HIGH_PRIORITY + 2;
     /** Longest allowed spin before a release: 100 µs. */
     public static final long MAX_SPIN_NS = 100_000;
     /** Default thread name. */
@@ -66,24 +70,13 @@ public record NotifierConfig(Profile profile, ThreadPolicy threadPolicy, CpuSet 
     }
 
     /**
-     * The defaults, but one real-time level above the highest dispatcher of {@code rule} (at most
+     * The defaults, but two real-time levels above the highest dispatcher of {@code rule} (at most
      * 99), with the same policy; {@link ThreadPolicy#NON_REALTIME} when no dispatcher of the rule
      * is real-time.
      */
     public static NotifierConfig above(ThreadSchedulingRule rule) {
         Objects.requireNonNull(rule, "rule");
-        ThreadPolicy highest = ThreadPolicy.NON_REALTIME;
-        for (int id = 0; id < rule.size(); id++) {
-            ThreadPolicy policy = rule.dispatcher(id).policy();
-            if (policy.isRealtime() && policy.priority() >= highest.priority()) {
-                highest = policy;
-            }
-        }
-        if (!highest.isRealtime()) {
-            return DEFAULTS.withThreadPolicy(ThreadPolicy.NON_REALTIME);
-        }
-        int priority = Math.min(highest.priority() + 1, ThreadSchedulingRule.MAX_REALTIME_PRIORITY);
-        return DEFAULTS.withThreadPolicy(new ThreadPolicy(highest.policy(), priority));
+        return DEFAULTS.withThreadPolicy(rule.above(2));
     }
 
     public NotifierConfig withProfile(Profile newProfile) {

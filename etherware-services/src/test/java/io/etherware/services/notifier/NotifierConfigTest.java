@@ -18,18 +18,18 @@ class NotifierConfigTest {
     private static final Profile TARGET = Profile.of("controller");
 
     @Test
-    void shouldRequestSchedFifoOneAboveTableIIWithoutSpinByDefault() {
+    void shouldRequestSchedFifoTwoAboveTableIIWithoutSpinByDefault() {
         NotifierConfig config = NotifierConfig.defaults();
-        assertEquals(ThreadPolicy.fifo(81), config.threadPolicy());
+        assertEquals(ThreadPolicy.fifo(82), config.threadPolicy(), "above the network's threads at 81");
         assertEquals(0, config.spinNs());
         assertEquals(config, NotifierConfig.above(ThreadSchedulingRule.tableII()));
     }
 
     @Test
-    void shouldSitOneAboveTheHighestRealtimeDispatcherOfARule() {
+    void shouldSitTwoAboveTheHighestRealtimeDispatcherOfARule() {
         var rule = ThreadSchedulingRule.of(DispatcherSpec.nonRealtime(), DispatcherSpec.fifo(40),
                 DispatcherSpec.fifo(90));
-        assertEquals(ThreadPolicy.fifo(91), NotifierConfig.above(rule).threadPolicy());
+        assertEquals(ThreadPolicy.fifo(92), NotifierConfig.above(rule).threadPolicy());
         assertEquals(ThreadPolicy.fifo(99), NotifierConfig.above(ThreadSchedulingRule.of(DispatcherSpec.fifo(99)))
                 .threadPolicy(), "capped at 99");
         assertEquals(ThreadPolicy.NON_REALTIME, NotifierConfig.above(ThreadSchedulingRule.nonRealtime(2))

@@ -28,7 +28,7 @@ import org.junit.jupiter.api.Test;
  * The Notifier on a real node with real threads and the real clock: subscriptions by message and
  * by Java call, a stalled receiver, runtime changes. Outcomes are asserted with generous margins.
  * The Notifier thread runs at SCHED_OTHER, except where a test needs it on time on a loaded box
- * (the stall tests, the default-priority test): there it has its default SCHED_FIFO 81 and only
+ * (the stall tests, the default-priority test): there it has its default SCHED_FIFO 82 and only
  * sleeps, never spins.
  */
 class NotifierNodeTest {
@@ -243,9 +243,9 @@ class NotifierNodeTest {
         var kernel = new RecordingKernel(io.etherware.core.time.NodeClock.system());
         try (var notifier = new Notifier(kernel, NotifierConfig.defaults()).start()) {
             ThreadGrant grant = notifier.threadGrant().orElseThrow();
-            assertEquals(ThreadPolicy.fifo(81), grant.requested());
+            assertEquals(ThreadPolicy.fifo(82), grant.requested());
             if (grant.refusals().isEmpty()) {
-                assertEquals(ThreadPolicy.fifo(81), grant.granted(), grant.toLine());
+                assertEquals(ThreadPolicy.fifo(82), grant.granted(), grant.toLine());
             } else {
                 assertEquals(ThreadPolicy.NON_REALTIME, grant.granted(), grant.toLine());
                 assertEquals("thread priority", grant.refusals().getFirst().feature());

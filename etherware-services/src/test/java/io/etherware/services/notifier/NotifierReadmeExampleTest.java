@@ -16,7 +16,7 @@ import org.junit.jupiter.api.Test;
 /**
  * The README's Notifier example (notes/readme-notifier.md), verbatim between the markers, so that
  * it always compiles and runs. Keep the README in step with this body. The Notifier thread asks
- * for SCHED_FIFO 81 here, as by default; it only sleeps (no spin).
+ * for SCHED_FIFO 82 here, as by default; it only sleeps (no spin).
  */
 class NotifierReadmeExampleTest {
 
@@ -26,7 +26,7 @@ class NotifierReadmeExampleTest {
     void shouldActivateTheControllerEvery15MsWithHighTicks() {
         try (var node = EtherwareNode.builder().nodeId("pendulum").build()) {
             // README example begins
-            Notifier.install(node, NotifierConfig.defaults()); // thread asks for SCHED_FIFO 81; warns once if refused
+            Notifier.install(node, NotifierConfig.defaults()); // thread asks for SCHED_FIFO 82; warns once if refused
             node.add(Profile.of("controller"), () -> new Component() {
                 @Override public void onStart(ComponentContext context) {
                     context.send(Notifier.profileFor(node.nodeId()), TickSubscribe.periodic(Criticality.HIGH, 15_000_000L));

@@ -140,7 +140,7 @@ public final class StressScenario {
         GcActivity gcBefore = GcActivity.now();
         try (PendulumRig rig = new PendulumRig("stress-" + variant.key(), () -> scheduler, initial, gains, cycles)) {
             rig.node().add(StressComponent.PROFILE, () -> new StressComponent(settings.stressWorkNs(), events));
-            // The node's Notifier: SCHED_FIFO 81, above every dispatcher, in both runs.
+            // The node's Notifier: SCHED_FIFO 82, above every dispatcher, in both runs.
             Notifier notifier = Notifier.install(rig.node(), NotifierConfig.defaults());
             PlantProbe probe = new PlantProbe(rig.board(), clock, periodNs, capacity, RunSummary.FALL_THRESHOLD_RAD,
                     events);

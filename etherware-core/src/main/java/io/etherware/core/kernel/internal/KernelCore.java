@@ -177,6 +177,14 @@ public final class KernelCore implements Kernel, JobRunner {
         if (message.contents() instanceof Tick tick && tick.releaseNs() <= nowNs
                 && nodeId.equals(message.messageId().nodeId())) {
             releaseNs = tick.releaseNs();
+        } else if (message.origin() != null) {
+            // From another node: released when it was made there (its time stamp, which NetworkTime
+            // translated into this node's clock), so its deadline is absolute across nodes and the
+            // time on the wire counts (DESIGN decision 12); one that arrives late is a miss.
+            long ageNs = clock.epochNanos() - message.timeStamp();
+            if (ageNs > 0) {
+                releaseNs = nowNs - ageNs;
+            }
         }
         if (!shell.enterQueue()) {
             deliverRemote(message, shell.forwardRoute()); // relocated, and nothing of it is queued here

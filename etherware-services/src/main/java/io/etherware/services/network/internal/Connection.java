@@ -165,6 +165,7 @@ final class Connection implements Runnable {
     }
 
     private void readLoop() {
+        engine.configureIoThread();
         try {
             while (!closing) {
                 switch (reader.next()) {
@@ -298,6 +299,7 @@ final class Connection implements Runnable {
     // ---------------------------------------------------------------- the writer thread
 
     private void writeLoop() {
+        engine.configureIoThread();
         try {
             while (true) {
                 WriterTurn turn = peer.nextTurn(this, BATCH);

@@ -1,6 +1,7 @@
 package io.etherware.services.network.internal;
 
 import io.etherware.core.codec.MessageCodec;
+import io.etherware.core.kernel.EtherwareNode;
 import io.etherware.core.kernel.Kernel;
 import io.etherware.core.kernel.ProfileResolutionException;
 import io.etherware.core.kernel.RemoteRoute;
@@ -12,6 +13,10 @@ import io.etherware.core.message.MessageId;
 import io.etherware.core.message.Profile;
 import io.etherware.core.message.QoS;
 import io.etherware.core.message.Text;
+import io.etherware.rt.platform.CpuSet;
+import io.etherware.rt.platform.Platform;
+import io.etherware.rt.platform.ThreadPolicy;
+import io.etherware.rt.scheduling.RealtimeScheduler;
 import io.etherware.services.network.CloseReason;
 import io.etherware.services.network.NetworkConfig;
 import io.etherware.services.network.NetworkStats;
@@ -77,6 +82,8 @@ public final class Engine {
     private volatile boolean closed;
 
     private final Announcer announcer;
+    /** The reader and writer threads' policy: configured, or derived from the node's scheduler. */
+    private final ThreadPolicy ioThreadPolicy;
 
     public Engine(Kernel kernel, NetworkConfig config) {
         this.kernel = kernel;
@@ -91,6 +98,33 @@ public final class Engine {
             return thread;
         });
         this.announcer = new Announcer(kernel, peers.values(), toReconcile);
+        this.ioThreadPolicy = config.threadPolicy() != null ? config.threadPolicy() : defaultIoThreadPolicy(kernel);
+    }
+
+    /**
+     * With a real-time scheduler, one level above its highest dispatcher (a thread that carries
+     * HIGH messages must not wait for LOW work); ordinary threads otherwise.
+     */
+    static ThreadPolicy defaultIoThreadPolicy(Kernel kernel) {
+        if (kernel instanceof EtherwareNode node && node.scheduler() instanceof RealtimeScheduler realtime) {
+            return realtime.config().threadSchedulingRule().above(1);
+        }
+        return ThreadPolicy.NON_REALTIME;
+    }
+
+    /** The policy the reader and writer threads ask for. */
+    public ThreadPolicy ioThreadPolicy() {
+        return ioThreadPolicy;
+    }
+
+    /**
+     * Gives the calling reader or writer thread its policy and CPUs, once its connection is
+     * established (a handshake never runs at real-time priority); a refusal is warned once.
+     */
+    void configureIoThread() {
+        if (ioThreadPolicy.isRealtime() || !config.cpus().equals(CpuSet.inherit())) {
+            Platform.current().configureCurrentThread(ioThreadPolicy, config.cpus());
+        }
     }
 
     // ---------------------------------------------------------------- lifecycle
