@@ -57,6 +57,43 @@ class NetworkBoundsTest {
     }
 
     @Test
+    void shouldKeepAtMostTheLowBudgetOfLowMessagesUnacknowledged() throws Exception {
+        var gate = new CountDownLatch(1);
+        var received = new CopyOnWriteArrayList<Long>();
+        int frame = 256 * 1024;
+        String sixtyFourKiB = "y".repeat(64 * 1024 - 16);
+        // b holds at most two frames of a's messages, then stops reading: what a has written and b
+        // has not acknowledged stays in flight, where a's LOW budget (128 KiB) must bound it.
+        try (var b = TestNode.start("b", TestNode.config().maxFrameBytes(frame).maxInboundBytesPerPeer(2L * frame));
+             var a = TestNode.start("a", TestNode.config().maxFrameBytes(frame).peer(b.address()))) {
+            b.node.add(SLOW, () -> (message, context) -> {
+                assertTrue(gate.await(60, TimeUnit.SECONDS));
+                received.add(Long.parseLong(message.contentsAs(Text.class).text().substring(0, 8).trim()));
+            });
+            assertTrue(a.net.awaitResolvable(SLOW, Duration.ofSeconds(30)));
+            int count = 40;
+            int mostInFlight = 0;
+            for (int i = 0; i < count; i++) {
+                a.node.send(SLOW, new Text(String.format("%8d", i) + sixtyFourKiB), QoS.of(Criticality.LOW));
+                mostInFlight = Math.max(mostInFlight, a.net.peer("b").orElseThrow().inFlight());
+            }
+            long untilNs = System.nanoTime() + TimeUnit.MILLISECONDS.toNanos(500);
+            while (System.nanoTime() < untilNs) {
+                mostInFlight = Math.max(mostInFlight, a.net.peer("b").orElseThrow().inFlight());
+                Thread.sleep(1);
+            }
+            assertTrue(mostInFlight <= 2, "LOW messages of 64 KiB unacknowledged at once: " + mostInFlight);
+            assertTrue(a.net.peer("b").orElseThrow().queued() > 0, "the rest wait in a's queue");
+
+            gate.countDown();
+            Await.until("every LOW message arrived", () -> received.size() == count);
+            for (int i = 0; i < count; i++) {
+                assertEquals(i, received.get(i), "in order, none lost or twice");
+            }
+        }
+    }
+
+    @Test
     void shouldShedOrRefuseMessagesBeyondTheBytesQueuedForAPeer() throws Exception {
         long maxQueued = 2L * FRAME;
         // b is never reachable: everything for it waits in a's queue.

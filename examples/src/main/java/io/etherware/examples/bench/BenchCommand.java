@@ -50,6 +50,11 @@ public final class BenchCommand implements Callable<Integer> {
                     + " pauses, section 7, are always reported).")
     private List<Integer> onlySections = new ArrayList<>();
 
+    @Option(names = "--cpus-may-sleep",
+            description = "Do not hold /dev/cpu_dma_latency at 0 during the run (default: held where permitted, for"
+                    + " every row alike, as cyclictest holds it; the report says which).")
+    private boolean cpusMaySleep;
+
     @Option(names = "--out", paramLabel = "DIR", defaultValue = "target/bench",
             description = "Directory for report.md and report.json (default: ${DEFAULT-VALUE}).")
     private Path out;
@@ -60,7 +65,11 @@ public final class BenchCommand implements Callable<Integer> {
         String settings = (quick ? "--quick" : "--duration-s " + (durationS == null ? BenchConfig.DEFAULT_PERIODIC_S
                 : durationS)) + (repetitions == null ? "" : " --repetitions " + repetitions) + (onlySections.isEmpty() ? "" : " --section " + onlySections.stream()
                 .map(String::valueOf).collect(Collectors.joining(",")));
-        BenchReport report = new Bench(config, Set.copyOf(onlySections), settings, spec.commandLine().getErr()).run();
+        BenchReport report;
+        try (CpuLatencyHold hold = cpusMaySleep ? CpuLatencyHold.none() : CpuLatencyHold.request()) {
+            report = new Bench(config, Set.copyOf(onlySections), settings + "; " + hold.state(),
+                    spec.commandLine().getErr()).run();
+        }
         report.write(out);
         PrintWriter stdout = spec.commandLine().getOut();
         stdout.print(report.markdown());

@@ -33,7 +33,8 @@ class BenchCommandIT {
             "codec.xml.encode.tick", "codec.json.encode.tick", "codec.xml.decode.tick", "codec.json.decode.tick",
             "codec.xml.encode.angles", "codec.json.encode.angles", "codec.xml.decode.angles",
             "codec.json.decode.angles",
-            "loopback.messenger", "loopback.raw",
+            "loopback.messenger", "loopback.raw", "loopback.ratio.p50", "loopback.ratio.p99",
+            "loopback.messenger.high-under-low",
             "gap.upgrade", "gap.migration",
             "gc.pauses");
 

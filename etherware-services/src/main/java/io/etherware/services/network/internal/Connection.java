@@ -33,6 +33,8 @@ final class Connection implements Runnable {
     /** Most messages a writer takes in one turn. */
     private static final int BATCH = 64;
     private static final int DIRECT_BUDGET_MAX_BYTES = 64 * 1024;
+    /** A receiver acknowledges at least every this many bytes of messages. */
+    static final int ACK_EVERY_BYTES = 64 * 1024;
 
     private final Engine engine;
     private final Socket socket;
@@ -67,6 +69,9 @@ final class Connection implements Runnable {
     private volatile long lastDataEndOffset;
     /** Bytes the peer has certainly read: up to the last message frame, once all were acknowledged. */
     private volatile long readByPeerOffset;
+
+    /** Reader thread only: message bytes received since the last acknowledgement was asked for. */
+    private long bytesSinceAckRequest;
 
     // Control thread only.
     long nextProbeNs;
@@ -256,8 +261,15 @@ final class Connection implements Runnable {
                 return; // replaced: the new connection carries the stream on, and closes this one
             }
             engine.counters().duplicates.increment();
-        } else if (peer.inboundCount() - lastAckSent >= engine.config().windowMessages() / 4) {
-            requestAck();
+        } else {
+            bytesSinceAckRequest += data.xml().length;
+            if (peer.inboundCount() - lastAckSent >= engine.config().windowMessages() / 4
+                    || bytesSinceAckRequest >= ACK_EVERY_BYTES) {
+                // By count for small messages, by bytes for large ones: a sender keeps at most
+                // Peer.LOW_IN_FLIGHT_BYTES of LOW messages unacknowledged.
+                bytesSinceAckRequest = 0;
+                requestAck();
+            }
         }
     }
 

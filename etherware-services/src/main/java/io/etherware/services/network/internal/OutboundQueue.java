@@ -91,6 +91,17 @@ final class OutboundQueue {
         levelBytes[message.level()] += message.xml().length;
     }
 
+    /** The most critical, oldest message, left in the queue, or null. */
+    Outgoing peek() {
+        for (int level = levels.size() - 1; level >= 0; level--) {
+            Outgoing message = levels.get(level).peekFirst();
+            if (message != null) {
+                return message;
+            }
+        }
+        return null;
+    }
+
     /** The most critical, oldest message, or null. */
     Outgoing poll() {
         for (int level = levels.size() - 1; level >= 0; level--) {

@@ -11,6 +11,11 @@ import io.etherware.core.message.Message;
  */
 record Outgoing(Message message, int hops, byte[] xml) {
 
+    /** Whether it is NONE or LOW: shed from a full queue, and bounded in flight (see {@link Peer}). */
+    boolean isSheddable() {
+        return message.qos().criticality().compareTo(io.etherware.core.message.Criticality.LOW) <= 0;
+    }
+
     /** Its criticality as an index, least critical first. */
     int level() {
         return message.qos().criticality().ordinal();

@@ -30,6 +30,14 @@ import java.util.concurrent.locks.ReentrantLock;
  */
 final class Peer {
 
+    /**
+     * Bytes of NONE and LOW messages written to the peer and not yet acknowledged, at most (one
+     * larger message may go alone): a HIGH message then waits behind at most this much LOW data in
+     * the sockets and the peer's reader, instead of behind whatever the socket buffers hold (MiBs
+     * on loopback). The peer acknowledges every 64 KiB it receives, so LOW throughput is kept.
+     */
+    static final int LOW_IN_FLIGHT_BYTES = 128 * 1024;
+
     final String nodeId;
     final ReentrantLock lock = new ReentrantLock();
     /** Signalled when a writer may have work: messages, acknowledgements, control requests. */
@@ -51,6 +59,8 @@ final class Peer {
     private volatile int queuedHint;
     /** Bytes of the messages in flight. */
     private long inFlightBytes;
+    /** Bytes of the NONE and LOW messages in flight. */
+    private long lowInFlightBytes;
     private volatile long ackedCount;
     /** Since when something written is unacknowledged with no acknowledgement progress; 0: nothing. */
     private volatile long unackedSinceNs;
@@ -110,13 +120,12 @@ final class Peer {
             long maxBytes = engine.config().maxQueuedBytesPerPeer();
             if (direct != null && active == direct && !writerBusy && queue.isEmpty()
                     && !direct.requests.mustPrecedeMessages() && inFlight.size() < engine.config().windowMessages()
-                    && inFlightBytes + xml.length <= maxBytes
+                    && inFlightBytes + xml.length <= maxBytes && lowRoomFor(outgoing, 0)
                     && direct.fitsDirectWrite(xml.length + Frame.DATA_OVERHEAD_BYTES)) {
                 writerBusy = true;
                 written = new InFlight(nextSeq++, outgoing, xml);
                 markUnacked();
-                inFlight.addLast(written);
-                inFlightBytes += xml.length;
+                addInFlight(written);
             } else {
                 outcome = queue.offer(outgoing, maxBytes - inFlightBytes);
                 queuedHint = queue.size();
@@ -281,6 +290,7 @@ final class Peer {
                     lost = List.copyOf(inFlight);
                     inFlight.clear();
                     inFlightBytes = 0;
+                    lowInFlightBytes = 0;
                     unackedSinceNs = 0;
                     nextSeq = 0;
                     ackedCount = 0;
@@ -353,7 +363,8 @@ final class Peer {
                     writerBusy = last != null;
                     return last;
                 }
-                boolean sendable = !queue.isEmpty() && inFlight.size() < window;
+                Outgoing head = queue.peek();
+                boolean sendable = head != null && inFlight.size() < window && lowRoomFor(head, 0);
                 if (!connection.requests.hasRequests() && !sendable) {
                     long waitNs = connection.heartbeatDueNs() - engine.nowNs();
                     if (waitNs > 0) {
@@ -372,12 +383,16 @@ final class Peer {
             // New messages only once every message to send again is out: the peer expects the
             // stream in order.
             int room = connection.requests.mustPrecedeMessages() ? 0 : Math.min(batch, window - inFlight.size());
+            long lowChosen = 0;
             while (turn.fresh.size() < room) {
-                Outgoing next = queue.poll();
-                if (next == null) {
-                    break;
+                Outgoing next = queue.peek();
+                if (next == null || !lowRoomFor(next, lowChosen)) {
+                    break; // the rest are NONE or LOW too: they wait for acknowledgements
                 }
-                turn.fresh.add(next);
+                if (next.isSheddable()) {
+                    lowChosen += next.xml().length;
+                }
+                turn.fresh.add(queue.poll());
             }
             queuedHint = queue.size();
             writerBusy = true;
@@ -406,8 +421,7 @@ final class Peer {
             }
             for (int i = 0; i < encoded.size(); i++) {
                 var entry = new InFlight(nextSeq++, encoded.get(i), xml.get(i));
-                inFlight.addLast(entry);
-                inFlightBytes += entry.xml().length;
+                addInFlight(entry);
                 assigned.add(entry);
             }
             return assigned;
@@ -419,13 +433,37 @@ final class Peer {
     private void releaseInFlightBelow(long count) {
         boolean released = false;
         while (!inFlight.isEmpty() && inFlight.peekFirst().seq() < count) {
-            inFlightBytes -= inFlight.pollFirst().xml().length;
+            removedFromFlight(inFlight.pollFirst());
             released = true;
         }
         if (inFlight.isEmpty()) {
             unackedSinceNs = 0;
         } else if (released) {
             unackedSinceNs = engine.nowNs();
+        }
+    }
+
+    /** Whether {@code next} may go now, with {@code chosen} more LOW bytes already taken (lock held). */
+    private boolean lowRoomFor(Outgoing next, long chosen) {
+        if (!next.isSheddable()) {
+            return true;
+        }
+        long already = lowInFlightBytes + chosen;
+        return already == 0 || already + next.xml().length <= LOW_IN_FLIGHT_BYTES;
+    }
+
+    private void addInFlight(InFlight entry) {
+        inFlight.addLast(entry);
+        inFlightBytes += entry.xml().length;
+        if (entry.outgoing().isSheddable()) {
+            lowInFlightBytes += entry.xml().length;
+        }
+    }
+
+    private void removedFromFlight(InFlight entry) {
+        inFlightBytes -= entry.xml().length;
+        if (entry.outgoing().isSheddable()) {
+            lowInFlightBytes -= entry.xml().length;
         }
     }
 
@@ -484,13 +522,14 @@ final class Peer {
     private void acknowledged(Connection connection, long count) {
         int window = engine.config().windowMessages();
         boolean windowWasFull = inFlight.size() >= window;
+        boolean lowWasFull = lowInFlightBytes > 0;
         releaseInFlightBelow(count);
         ackedCount = count;
         if (inFlight.isEmpty()) {
             connection.allDataAcknowledged();
         }
-        if (windowWasFull && inFlight.size() < window && !queue.isEmpty()) {
-            work.signal(); // the writer waited for room in the window
+        if (!queue.isEmpty() && (windowWasFull && inFlight.size() < window || lowWasFull)) {
+            work.signal(); // the writer waited for room in the window, or for LOW room
         }
     }
 
@@ -506,7 +545,7 @@ final class Peer {
                 InFlight entry = each.next();
                 if (entry.seq() == seq) {
                     each.remove();
-                    inFlightBytes -= entry.xml().length;
+                    removedFromFlight(entry);
                     return entry.outgoing();
                 }
             }
@@ -606,6 +645,7 @@ final class Peer {
         List<InFlight> lost = List.copyOf(inFlight);
         inFlight.clear();
         inFlightBytes = 0;
+        lowInFlightBytes = 0;
         unackedSinceNs = 0;
         streamId = engine.newStreamId();
         nextSeq = 0;
