@@ -1,22 +1,15 @@
 package io.etherware.services.network.internal;
 
 import io.etherware.core.codec.MessageCodec;
-import io.etherware.core.kernel.EtherwareNode;
 import io.etherware.core.kernel.Kernel;
 import io.etherware.core.kernel.ProfileResolutionException;
 import io.etherware.core.kernel.RemoteRoute;
-import io.etherware.core.kernel.RequestFailed;
-import io.etherware.core.kernel.Undeliverable;
-import io.etherware.core.message.Criticality;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageId;
 import io.etherware.core.message.Profile;
 import io.etherware.core.message.QoS;
 import io.etherware.core.message.Text;
-import io.etherware.rt.platform.CpuSet;
-import io.etherware.rt.platform.Platform;
 import io.etherware.rt.platform.ThreadPolicy;
-import io.etherware.rt.scheduling.RealtimeScheduler;
 import io.etherware.services.network.CloseReason;
 import io.etherware.services.network.NetworkConfig;
 import io.etherware.services.network.NetworkStats;
@@ -39,7 +32,6 @@ import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.ScheduledThreadPoolExecutor;
 import java.util.concurrent.ThreadLocalRandom;
 import java.util.concurrent.TimeUnit;
-import java.util.concurrent.atomic.AtomicLong;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -76,14 +68,13 @@ public final class Engine {
     private final ConcurrentLinkedQueue<Profile> toReconcile = new ConcurrentLinkedQueue<>();
     private final ScheduledThreadPoolExecutor control;
     private final Object stateChanged = new Object();
-    private final AtomicLong overflowLogged = new AtomicLong();
+    private final Losses losses;
     private ServerSocket server;
     private Thread acceptor;
     private volatile boolean closed;
 
     private final Announcer announcer;
-    /** The reader and writer threads' policy: configured, or derived from the node's scheduler. */
-    private final ThreadPolicy ioThreadPolicy;
+    private final IoThreads ioThreads;
 
     public Engine(Kernel kernel, NetworkConfig config) {
         this.kernel = kernel;
@@ -98,33 +89,18 @@ public final class Engine {
             return thread;
         });
         this.announcer = new Announcer(kernel, peers.values(), toReconcile);
-        this.ioThreadPolicy = config.threadPolicy() != null ? config.threadPolicy() : defaultIoThreadPolicy(kernel);
-    }
-
-    /**
-     * With a real-time scheduler, one level above its highest dispatcher (a thread that carries
-     * HIGH messages must not wait for LOW work); ordinary threads otherwise.
-     */
-    static ThreadPolicy defaultIoThreadPolicy(Kernel kernel) {
-        if (kernel instanceof EtherwareNode node && node.scheduler() instanceof RealtimeScheduler realtime) {
-            return realtime.config().threadSchedulingRule().above(1);
-        }
-        return ThreadPolicy.NON_REALTIME;
+        this.losses = new Losses(kernel, counters);
+        this.ioThreads = IoThreads.of(kernel, config);
     }
 
     /** The policy the reader and writer threads ask for. */
     public ThreadPolicy ioThreadPolicy() {
-        return ioThreadPolicy;
+        return ioThreads.policy();
     }
 
-    /**
-     * Gives the calling reader or writer thread its policy and CPUs, once its connection is
-     * established (a handshake never runs at real-time priority); a refusal is warned once.
-     */
+    /** See {@link IoThreads#configureCurrent}. */
     void configureIoThread() {
-        if (ioThreadPolicy.isRealtime() || !config.cpus().equals(CpuSet.inherit())) {
-            Platform.current().configureCurrentThread(ioThreadPolicy, config.cpus());
-        }
+        ioThreads.configureCurrent();
     }
 
     // ---------------------------------------------------------------- lifecycle
@@ -398,72 +374,19 @@ public final class Engine {
         }
     }
 
-    /**
-     * A message that cannot be delivered: counted, and its sender gets an {@link Undeliverable}
-     * notice (a request of the sender's then fails); without a sender, a log line.
-     */
+    /** See {@link Losses#lost}. */
     void lost(Message message, String reason) {
-        counters.undeliverable.increment();
-        if (message.isReply() && !(message.contents() instanceof Undeliverable)
-                && !(message.contents() instanceof RequestFailed)) {
-            failRequestOf(message, reason);
-            return;
-        }
-        if (message.sender() == null || message.contents() instanceof Undeliverable
-                || message.contents() instanceof RequestFailed) {
-            log.warn("node {}: message {} to '{}' is lost: {}", nodeId, message.messageId(), message.profile(), reason);
-            return;
-        }
-        log.debug("node {}: message {} to '{}' is undeliverable: {}", nodeId, message.messageId(), message.profile(),
-                reason);
-        try {
-            kernel.send(new Message(message.sender(), kernel.profile(), kernel.clock().epochNanos(), message.qos(),
-                    new Undeliverable(message.profile().toString(), message.messageId().toString(), reason),
-                    kernel.newMessageId(), message.messageId()));
-        } catch (RuntimeException e) {
-            log.warn("node {}: could not tell '{}' that message {} is lost ({}): {}", nodeId, message.sender(),
-                    message.messageId(), reason, e.toString());
-        }
+        losses.lost(message, reason);
     }
 
-    /**
-     * A reply that cannot be delivered: its requester, not its responder, must hear of it, or the
-     * request hangs until its timeout. The requester's node gets a {@link RequestFailed} for the
-     * request (queued for that node like any message; if it cannot go either, a log line).
-     */
-    private void failRequestOf(Message reply, String reason) {
-        String responder = reply.sender() == null ? nodeId : reply.sender().toString();
-        log.debug("node {}: reply {} to request {} is lost ({}); failing the request at its requester", nodeId,
-                reply.messageId(), reply.correlationId(), reason);
-        try {
-            kernel.send(new Message(reply.profile(), reply.sender(), kernel.clock().epochNanos(), reply.qos(),
-                    new RequestFailed(reply.correlationId().toString(), responder, "its reply was lost: " + reason),
-                    kernel.newMessageId(), reply.correlationId()));
-        } catch (RuntimeException e) {
-            log.warn("node {}: could not tell the requester of {} that its reply is lost ({}): {}", nodeId,
-                    reply.correlationId(), reason, e.toString());
-        }
-    }
-
-    /** Reports messages written to a peer whose fate is unknown. */
+    /** See {@link Losses#reportLost}. */
     void reportLost(List<InFlight> entries, String peerId, String reason) {
-        for (InFlight entry : entries) {
-            lost(entry.outgoing().message(), reason);
-        }
+        losses.reportLost(entries, reason);
     }
 
-    /** A message dropped from a full queue: NONE and LOW are shed (counted); others are reported. */
+    /** See {@link Losses#dropped}. */
     void dropped(Message message, String peerId, String reason) {
-        if (message.qos().criticality().compareTo(Criticality.LOW) > 0) {
-            lost(message, reason);
-            return;
-        }
-        counters.overflowDropped.increment();
-        long count = overflowLogged.incrementAndGet();
-        if (count == 1 || count % 10_000 == 0) {
-            log.warn("node {}: shedding {} messages to node '{}' ({} so far): {}", nodeId,
-                    message.qos().criticality(), peerId, count, reason);
-        }
+        losses.dropped(message, peerId, reason);
     }
 
     /** A route to whatever profile a peer hosts, e.g. for a migration to that node. */
