@@ -35,7 +35,7 @@ class EtherwareDemoTest {
     @Test
     void shouldAskForAScenarioWhenNoneIsNamed() {
         assertEquals(2, execute());
-        assertTrue(err.toString().contains("Name a scenario: stress, upgrade, migrate, bench"), err.toString());
+        assertTrue(err.toString().contains("Name a scenario: stress, netstress, upgrade, migrate, bench"), err.toString());
     }
 
     @Test
