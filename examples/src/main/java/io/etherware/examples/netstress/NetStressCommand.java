@@ -14,6 +14,8 @@ import java.util.concurrent.Callable;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Mixin;
 import picocli.CommandLine.Model.CommandSpec;
+import picocli.CommandLine.Option;
+import picocli.CommandLine.ParameterException;
 import picocli.CommandLine.Spec;
 
 /**
@@ -29,7 +31,7 @@ import picocli.CommandLine.Spec;
             "The stress experiment (paper Section VI-B) in the two-node topology of Fig. 10: node 1 (this JVM) holds"
                     + " the DSP board, the DSPProxy and the Notifier, node 2 (a second JVM it starts per run) the"
                     + " controller, so every control cycle crosses TCP on loopback twice. Each node runs a stress task"
-                    + " on LOW Ticks and ordinary load threads. Twice: on the original Etherware (one FIFO dispatcher"
+                    + " on LOW Ticks (node 2's half a stress period after node 1's) and ordinary load threads. Twice: on the original Etherware (one FIFO dispatcher"
                     + " and ordinary network threads on both nodes) and on Etherware-RT (Table II dispatchers and"
                     + " SCHED_FIFO network threads above the HIGH dispatcher). Prints a side-by-side table and writes"
                     + " CSVs and PNG/SVG plots.",
@@ -46,14 +48,26 @@ public final class NetStressCommand implements Callable<Integer> {
     @Mixin
     private StressOptions stress;
 
+    @Option(names = "--node2-offset", paramLabel = "SECONDS",
+            description = "How long after node 1's stress node 2's comes (default: half of --stress-every; 0: both"
+                    + " at once, which on a host with as many cores as nodes holds every core at SCHED_FIFO and"
+                    + " meets the kernel's real-time throttling).")
+    private Double node2OffsetS;
+
     @Override
     public Integer call() throws Exception {
         StressConfig config = stress.config(spec.commandLine(), common, "netstress");
+        long offsetNs = node2OffsetS == null ? NetStressScenario.defaultNode2OffsetNs(config)
+                : Math.round(node2OffsetS * 1e9);
+        if (offsetNs < 0 || offsetNs >= config.stressEveryNs()) {
+            throw new ParameterException(spec.commandLine(), "--node2-offset=" + node2OffsetS + " is out of range:"
+                    + " from 0 to below --stress-every (" + config.stressEveryNs() / 1e9 + " s)");
+        }
         PrintWriter out = spec.commandLine().getOut();
-        out.println(NetStressReport.heading(config));
+        out.println(NetStressReport.heading(config, offsetNs));
         out.flush();
 
-        var scenario = new NetStressScenario(config,
+        var scenario = new NetStressScenario(config, offsetNs,
                 label -> Progress.onStandardError(label, config.durationNs() / 1e9));
         spec.commandLine().getErr().println("warming up: each variant briefly on both nodes, without load or stress");
         spec.commandLine().getErr().flush();
@@ -65,7 +79,7 @@ public final class NetStressCommand implements Callable<Integer> {
             }
         }
         List<RunSummary> summaries = runs.stream().map(run -> RunSummary.of(run.run())).toList();
-        List<Path> written = NetStressReport.write(config, runs, summaries);
+        List<Path> written = NetStressReport.write(config, offsetNs, runs, summaries);
 
         out.println();
         out.print(NetStressReport.table(runs, summaries));

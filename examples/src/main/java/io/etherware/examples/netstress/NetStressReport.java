@@ -27,12 +27,13 @@ public final class NetStressReport {
     }
 
     /** The heading line of the table: what ran. */
-    public static String heading(StressConfig config) {
+    public static String heading(StressConfig config, long node2OffsetNs) {
         return String.format(Locale.ROOT, "netstress (paper Section VI-B, Fig. 10 topology): %.0f s per run; DSP board,"
                 + " DSPProxy and Notifier on node 1, controller on node 2 (a second JVM) on HIGH Ticks every %d ms"
-                + " across TCP on loopback; on each node a stress task on LOW Ticks every %.1f s computing %d ms and"
-                + " %d load threads allocating", config.durationNs() / 1e9, config.periodNs() / 1_000_000,
-                config.stressEveryNs() / 1e9, config.stressWorkNs() / 1_000_000, config.loadThreads());
+                + " across TCP on loopback; on each node a stress task on LOW Ticks every %.1f s computing %d ms (node"
+                + " 2's %.1f s after node 1's) and %d load threads allocating", config.durationNs() / 1e9,
+                config.periodNs() / 1_000_000, config.stressEveryNs() / 1e9, config.stressWorkNs() / 1_000_000,
+                node2OffsetNs / 1e9, config.loadThreads());
     }
 
     /** The side-by-side table of {@code runs} with their {@code summaries}. */
@@ -45,11 +46,11 @@ public final class NetStressReport {
     }
 
     /** Writes everything; returns the files written, in order. */
-    public static List<Path> write(StressConfig config, List<NetStressRun> runs, List<RunSummary> summaries)
-            throws IOException {
+    public static List<Path> write(StressConfig config, long node2OffsetNs, List<NetStressRun> runs,
+            List<RunSummary> summaries) throws IOException {
         List<ScenarioRun> scenarioRuns = runs.stream().map(NetStressRun::run).toList();
         List<Path> written = new ArrayList<>(StressReport.write(config.out(), "netstress", "Networked stress",
-                heading(config), table(runs, summaries), scenarioRuns));
+                heading(config, node2OffsetNs), table(runs, summaries), scenarioRuns));
         for (ScenarioRun run : scenarioRuns) {
             Path log = config.out().resolve("node-2-" + run.key() + ".log");
             if (Files.exists(log)) {
