@@ -33,9 +33,25 @@ class EtherwareDemoTest {
     }
 
     @Test
+    void shouldListTheStressOptionsAndTheNode2OffsetInTheNetstressHelp() {
+        assertEquals(0, execute("netstress", "--help"));
+        String help = out.toString();
+        for (String option : new String[] {"--duration", "--period-ms", "--out", "--stress-every", "--stress-ms",
+            "--load-threads", "--only", "--node2-offset"}) {
+            assertTrue(help.contains(option), () -> option + " missing from:\n" + help);
+        }
+    }
+
+    @Test
+    void shouldRefuseANode2OffsetOfAWholeStressPeriod() {
+        assertEquals(2, execute("netstress", "--stress-every", "4", "--node2-offset", "4"));
+        assertTrue(err.toString().contains("--node2-offset=4.0 is out of range"), err.toString());
+    }
+
+    @Test
     void shouldAskForAScenarioWhenNoneIsNamed() {
         assertEquals(2, execute());
-        assertTrue(err.toString().contains("Name a scenario: stress, upgrade, migrate, bench"), err.toString());
+        assertTrue(err.toString().contains("Name a scenario: stress, netstress, upgrade, migrate, bench"), err.toString());
     }
 
     @Test

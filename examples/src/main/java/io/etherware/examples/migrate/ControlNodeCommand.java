@@ -2,6 +2,7 @@ package io.etherware.examples.migrate;
 
 import io.etherware.core.kernel.EtherwareNode;
 import io.etherware.examples.scenario.ControlListeners;
+import io.etherware.examples.scenario.NodeProcess;
 import io.etherware.examples.scenario.Schedulers;
 import io.etherware.pendulum.components.DspProxy;
 import io.etherware.pendulum.components.PendulumController;
@@ -37,7 +38,7 @@ import picocli.CommandLine.Spec;
 public final class ControlNodeCommand implements Callable<Integer> {
 
     /** What the node prints when it is ready for the board to start. */
-    public static final String READY = "READY";
+    public static final String READY = NodeProcess.READY;
     private static final Duration RESOLVE_TIMEOUT = Duration.ofSeconds(30);
 
     @Spec
@@ -88,15 +89,10 @@ public final class ControlNodeCommand implements Callable<Integer> {
     }
 
     private InetSocketAddress address(String text) {
-        int colon = text.lastIndexOf(':');
         try {
-            if (colon <= 0) {
-                throw new NumberFormatException("no port");
-            }
-            return new InetSocketAddress(text.substring(0, colon), Integer.parseInt(text.substring(colon + 1)));
+            return NodeProcess.address(text);
         } catch (IllegalArgumentException e) {
-            throw new ParameterException(spec.commandLine(), "--connect=" + text + " is not HOST:PORT (" + e.getMessage()
-                    + ")");
+            throw new ParameterException(spec.commandLine(), "--connect=" + e.getMessage());
         }
     }
 }

@@ -3,9 +3,9 @@ package io.etherware.examples.migrate;
 import io.etherware.core.kernel.Endpoint;
 import io.etherware.core.message.Criticality;
 import io.etherware.core.time.NodeClock;
-import io.etherware.examples.EtherwareDemo;
 import io.etherware.examples.scenario.ControlListeners;
 import io.etherware.examples.scenario.CycleLog;
+import io.etherware.examples.scenario.NodeProcess;
 import io.etherware.examples.scenario.PendulumRig;
 import io.etherware.examples.scenario.PlantProbe;
 import io.etherware.examples.scenario.Progress;
@@ -32,11 +32,8 @@ import io.etherware.services.notifier.Notifier;
 import io.etherware.services.notifier.NotifierConfig;
 import io.etherware.services.notifier.Subscription;
 import io.etherware.services.notifier.SubscriptionStats;
-import java.io.BufferedReader;
 import java.io.IOException;
-import java.io.InputStreamReader;
 import java.net.InetSocketAddress;
-import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
@@ -44,7 +41,6 @@ import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
 import java.util.Objects;
-import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.CompletionException;
 import java.util.concurrent.ExecutionException;
 import java.util.concurrent.TimeUnit;
@@ -129,7 +125,9 @@ public final class MigrateScenario {
                 ManagementService.install(rig.node(), MigrateConfig.management(MigrateConfig.CONTROL_NODE), net);
                 Notifier notifier = Notifier.install(rig.node(), NotifierConfig.defaults());
                 Path nodeLog = config.out().resolve("node-2.log");
-                Process node2 = startNode2(net.localAddress(), listenerName, nodeLog);
+                NodeProcess node2 = NodeProcess.start(List.of("migrate-node", "--connect",
+                        NodeProcess.hostPort(net.localAddress()), "--listener", listenerName), nodeLog,
+                        NODE_START_TIMEOUT_S);
                 try {
                     if (!net.awaitResolvable(PendulumController.DEFAULT_PROFILE, Duration.ofSeconds(30))) {
                         throw new IOException("node 2's controller does not resolve on node 1; see " + nodeLog);
@@ -138,13 +136,13 @@ public final class MigrateScenario {
                     return balanceAndMigrate(rig, notifier, node2, clock, threads, events, cycles, capacity,
                             scheduler, lastRemote, firstLocal, listenerName);
                 } finally {
-                    stop(node2);
+                    node2.stop();
                 }
             }
         }
     }
 
-    private MigrateOutcome balanceAndMigrate(PendulumRig rig, Notifier notifier, Process node2, NodeClock clock,
+    private MigrateOutcome balanceAndMigrate(PendulumRig rig, Notifier notifier, NodeProcess node2, NodeClock clock,
             SimThreads threads, ScenarioEvents events, CycleLog cycles, int capacity, RealtimeScheduler scheduler,
             AtomicReference<ControlCycle> lastRemote, AtomicReference<ControlCycle> firstLocal, String listenerName)
             throws InterruptedException {
@@ -228,92 +226,6 @@ public final class MigrateScenario {
             rig.node().remove(WarmUp.REHEARSAL);
         } catch (ExecutionException | TimeoutException e) {
             LOG.warn("rehearsal migration failed ({}); the real one will run cold", e.toString());
-        }
-    }
-
-    /**
-     * Starts node 2's JVM on this JVM's class path and waits until it prints {@code READY}. Its
-     * standard output is read by a thread of its own to the end (not by the common pool, which a
-     * busy JVM may not have free), so node 2 never blocks on a full pipe.
-     */
-    private static Process startNode2(InetSocketAddress plant, String listenerName, Path log) throws IOException {
-        String classPath = System.getProperty("surefire.test.class.path", System.getProperty("java.class.path"));
-        List<String> command = List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "--enable-native-access=ALL-UNNAMED", "-cp", classPath, EtherwareDemo.class.getName(), "migrate-node",
-                "--connect", plant.getHostString() + ":" + plant.getPort(), "--listener", listenerName);
-        Process process = new ProcessBuilder(command).redirectError(log.toFile()).start();
-        var ready = new CompletableFuture<Boolean>();
-        var printed = new StringBuilder();
-        Thread.ofPlatform().name("node-2-stdout").daemon().start(() -> {
-            try (var out = new BufferedReader(new InputStreamReader(process.getInputStream(), StandardCharsets.UTF_8))) {
-                for (String line = out.readLine(); line != null; line = out.readLine()) {
-                    if (line.equals(ControlNodeCommand.READY)) {
-                        ready.complete(true);
-                    } else if (!ready.isDone()) {
-                        synchronized (printed) {
-                            printed.append(line).append('\n');
-                        }
-                    }
-                }
-            } catch (IOException e) {
-                // the process is gone; the wait below reports it
-            } finally {
-                ready.complete(false);
-            }
-        });
-        try {
-            if (ready.get(NODE_START_TIMEOUT_S, TimeUnit.SECONDS)) {
-                return process;
-            }
-        } catch (ExecutionException | TimeoutException e) {
-            // reported below
-        } catch (InterruptedException e) {
-            Thread.currentThread().interrupt();
-        }
-        boolean alive = process.isAlive();
-        if (alive) {
-            dumpThreads(process.pid(), log);
-            dumpThreads(ProcessHandle.current().pid(), log);
-        }
-        process.destroyForcibly();
-        String output;
-        synchronized (printed) {
-            output = printed.toString().strip();
-        }
-        throw new IOException("node 2's JVM did not report READY within " + NODE_START_TIMEOUT_S + " s ("
-                + (alive ? "still running" : "exited with " + process.exitValue()) + "); its standard output: '"
-                + output + "'; its log: " + log);
-    }
-
-    /**
-     * Appends a thread dump of process {@code pid} to {@code log} ({@code jcmd <pid> Thread.print}),
-     * for a node that did not come up: which threads ran, which waited. Best effort.
-     */
-    private static void dumpThreads(long pid, Path log) {
-        Path jcmd = Path.of(System.getProperty("java.home"), "bin", "jcmd");
-        try {
-            Process dump = new ProcessBuilder(jcmd.toString(), Long.toString(pid), "Thread.print")
-                    .redirectErrorStream(true).redirectOutput(ProcessBuilder.Redirect.appendTo(log.toFile())).start();
-            if (!dump.waitFor(20, TimeUnit.SECONDS)) {
-                dump.destroyForcibly();
-            }
-        } catch (IOException e) {
-            LOG.warn("could not dump the threads of process {}: {}", pid, e.toString());
-        } catch (InterruptedException e) {
-            Thread.currentThread().interrupt();
-        }
-    }
-
-    /** Closes node 2's input, which ends it; forcibly after 30 s. */
-    private static void stop(Process process) throws InterruptedException {
-        try {
-            process.getOutputStream().close();
-        } catch (IOException e) {
-            // already gone
-        }
-        if (!process.waitFor(30, TimeUnit.SECONDS)) {
-            LOG.warn("node 2 (pid {}) did not stop within 30 s of its input closing; ending it", process.pid());
-            process.destroyForcibly();
         }
     }
 }

@@ -5,6 +5,7 @@ import io.etherware.examples.scenario.ScenarioRun;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
+import java.util.Objects;
 import java.util.function.Function;
 
 /**
@@ -29,8 +30,32 @@ public final class ComparisonTable {
 
     /** The table of {@code runs} with their {@code summaries} (same order), lines ending in '\n'. */
     public static String format(List<ScenarioRun> runs, List<RunSummary> summaries) {
+        return format(runs, summaries, List.of());
+    }
+
+    /**
+     * A row a scenario adds below the summary's: a label and one cell per run, in the runs' order.
+     *
+     * @param label what the row shows, with its unit
+     * @param cells one per run
+     */
+    public record Row(String label, List<String> cells) {
+        public Row {
+            Objects.requireNonNull(label, "label");
+            cells = List.copyOf(cells);
+        }
+    }
+
+    /** The table of {@code runs} with their {@code summaries} and a scenario's {@code extra} rows below. */
+    public static String format(List<ScenarioRun> runs, List<RunSummary> summaries, List<Row> extra) {
         if (runs.size() != summaries.size()) {
             throw new IllegalArgumentException("runs=" + runs.size() + " but summaries=" + summaries.size());
+        }
+        for (Row row : extra) {
+            if (row.cells().size() != runs.size()) {
+                throw new IllegalArgumentException("row '" + row.label() + "' has " + row.cells().size()
+                        + " cells for " + runs.size() + " runs");
+            }
         }
         int width = Math.max(MIN_COLUMN_WIDTH, runs.stream().mapToInt(r -> r.title().length() + 2).max().orElse(0));
         var text = new StringBuilder();
@@ -46,6 +71,11 @@ public final class ComparisonTable {
         row(text, "deadline misses", summaries, s -> s.deadlineMisses() + " of " + s.releases(), width);
         row(text, "fell (|θ2| > " + RunSummary.FALL_THRESHOLD_RAD + " rad)", summaries,
                 s -> s.fell() ? f("yes, at %.2f s", s.fellAtS()) : "no", width);
+        for (Row row : extra) {
+            text.append(String.format(Locale.ROOT, "%-" + LABEL_WIDTH + "s", row.label()));
+            row.cells().forEach(cell -> text.append(pad(cell, width)));
+            text.append('\n');
+        }
         return text.toString();
     }
 

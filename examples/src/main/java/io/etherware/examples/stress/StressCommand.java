@@ -13,8 +13,6 @@ import java.util.concurrent.Callable;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Mixin;
 import picocli.CommandLine.Model.CommandSpec;
-import picocli.CommandLine.Option;
-import picocli.CommandLine.ParameterException;
 import picocli.CommandLine.Spec;
 
 /**
@@ -44,25 +42,12 @@ public final class StressCommand implements Callable<Integer> {
     @Mixin
     private ScenarioOptions common;
 
-    @Option(names = "--stress-every", paramLabel = "SECONDS", defaultValue = "5",
-            description = "Period of the stress task's LOW Ticks in seconds (default: ${DEFAULT-VALUE}).")
-    private double stressEveryS;
-
-    @Option(names = "--stress-ms", paramLabel = "MS", defaultValue = "1000",
-            description = "How long each stress activation computes, in milliseconds (default: ${DEFAULT-VALUE}).")
-    private long stressMs;
-
-    @Option(names = "--load-threads", paramLabel = "N",
-            description = "Ordinary threads that load the cores and allocate (default: one per core).")
-    private Integer loadThreads;
-
-    @Option(names = "--only", paramLabel = "RUN",
-            description = "Run only one of: ${COMPLETION-CANDIDATES} (default: both, FIFO first).")
-    private StressScenario.Variant only;
+    @Mixin
+    private StressOptions stress;
 
     @Override
     public Integer call() throws Exception {
-        StressConfig config = config();
+        StressConfig config = stress.config(spec.commandLine(), common, "stress");
         PrintWriter out = spec.commandLine().getOut();
         out.println(StressReport.heading(config));
         out.flush();
@@ -73,7 +58,7 @@ public final class StressCommand implements Callable<Integer> {
         scenario.warmUp();
         List<ScenarioRun> runs = new ArrayList<>();
         for (StressScenario.Variant variant : StressScenario.Variant.values()) {
-            if (only == null || only == variant) {
+            if (stress.runs(variant)) {
                 runs.add(scenario.run(variant));
             }
         }
@@ -89,32 +74,5 @@ public final class StressCommand implements Callable<Integer> {
         written.forEach(path -> out.println("  " + path.toAbsolutePath().normalize()));
         out.flush();
         return 0;
-    }
-
-    private StressConfig config() {
-        if (!(stressEveryS > 0 && stressEveryS <= 3_600)) {
-            throw new ParameterException(spec.commandLine(), "--stress-every=" + stressEveryS
-                    + " is out of range: give the stress period in seconds, above 0 and at most 3600");
-        }
-        long stressEveryNs = Math.round(stressEveryS * 1e9);
-        if (stressMs < 1 || stressMs * 1_000_000L >= stressEveryNs || stressMs > 10_000) {
-            throw new ParameterException(spec.commandLine(), "--stress-ms=" + stressMs + " is out of range: from 1 to"
-                    + " 10000 ms and shorter than --stress-every (" + stressEveryS + " s)");
-        }
-        int threads = loadThreads != null ? loadThreads : Runtime.getRuntime().availableProcessors();
-        if (threads < 0 || threads > 256) {
-            throw new ParameterException(spec.commandLine(), "--load-threads=" + threads
-                    + " is out of range: from 0 (no load) to 256");
-        }
-        long periodNs = common.periodNs();
-        if (stressEveryNs < periodNs) {
-            throw new ParameterException(spec.commandLine(), "--stress-every=" + stressEveryS
-                    + " s is shorter than the control period --period-ms");
-        }
-        return StressConfig.defaults(common.out("stress"))
-                .withDurationNs(common.durationNs(DEFAULT_DURATION_S))
-                .withPeriodNs(periodNs)
-                .withStress(stressEveryNs, stressMs * 1_000_000L)
-                .withLoadThreads(threads);
     }
 }

@@ -43,28 +43,37 @@ public final class StressReport {
     /** Writes everything; returns the files written, in order. */
     public static List<Path> write(StressConfig config, List<ScenarioRun> runs, List<RunSummary> summaries)
             throws IOException {
-        Path out = config.out();
+        return write(config.out(), "stress", "Stress", heading(config), ComparisonTable.format(runs, summaries), runs);
+    }
+
+    /**
+     * Writes a stress-like scenario's files into {@code out}: {@code <name>-<run>.csv} and
+     * {@code .png/.svg} per run, {@code <name>.png/.svg} comparing θ2, and {@code summary.txt} with
+     * {@code heading}, {@code table} and the run notes; {@code what} begins the plot titles.
+     * Returns the files written, in order.
+     */
+    public static List<Path> write(Path out, String name, String what, String heading, String table,
+            List<ScenarioRun> runs) throws IOException {
         Files.createDirectories(out);
         List<Path> written = new ArrayList<>();
         for (ScenarioRun run : runs) {
-            Path csv = out.resolve("stress-" + run.key() + ".csv");
+            Path csv = out.resolve(name + "-" + run.key() + ".csv");
             TraceCsv.write(run, csv);
             written.add(csv);
         }
         Path summary = out.resolve("summary.txt");
-        var text = new StringBuilder(heading(config)).append("\n\n").append(ComparisonTable.format(runs, summaries))
-                .append('\n');
+        var text = new StringBuilder(heading).append("\n\n").append(table).append('\n');
         runs.forEach(run -> run.notes().forEach(note -> text.append(note).append('\n')));
         Files.writeString(summary, text, StandardCharsets.UTF_8);
         written.add(summary);
 
         for (ScenarioRun run : runs) {
-            plot(written, () -> AnglePlots.save(AnglePlots.jointAngles(run, "Stress, " + run.title()
-                    + ": joint angles"), out.resolve("stress-" + run.key())));
+            plot(written, () -> AnglePlots.save(AnglePlots.jointAngles(run, what + ", " + run.title()
+                    + ": joint angles"), out.resolve(name + "-" + run.key())));
         }
-        plot(written, () -> AnglePlots.save(AnglePlots.compareTheta2(runs,
-                "Pendulum angle under stress: " + String.join(" vs ", runs.stream().map(ScenarioRun::title).toList())),
-                out.resolve("stress")));
+        plot(written, () -> AnglePlots.save(AnglePlots.compareTheta2(runs, "Pendulum angle under "
+                + what.toLowerCase(Locale.ROOT) + ": " + String.join(" vs ", runs.stream().map(ScenarioRun::title)
+                .toList())), out.resolve(name)));
         return written;
     }
 

@@ -199,7 +199,8 @@ public final class StressScenario {
         }
     }
 
-    private static String realtimeNote(RealtimeScheduler scheduler) {
+    /** The scheduler-counted misses and each busy dispatcher's jobs and start latency, as a note line. */
+    public static String realtimeNote(RealtimeScheduler scheduler) {
         var note = new StringBuilder(String.format(Locale.ROOT, "  scheduler-counted deadline misses %d;",
                 scheduler.stats().deadlineMisses()));
         for (DispatcherStats dispatcher : scheduler.stats().dispatchers()) {

@@ -1,0 +1,68 @@
+package io.etherware.examples.stress;
+
+import io.etherware.examples.scenario.ScenarioOptions;
+import picocli.CommandLine;
+import picocli.CommandLine.Option;
+import picocli.CommandLine.ParameterException;
+
+/**
+ * The stress experiment's command-line options, shared by {@code stress} and {@code netstress}
+ * (a picocli mixin): the stress task's period and work, the load threads, and which run.
+ * Validated by {@link #config}, whose messages name the option and its range.
+ */
+public final class StressOptions {
+
+    @Option(names = "--stress-every", paramLabel = "SECONDS", defaultValue = "5",
+            description = "Period of the stress task's LOW Ticks in seconds (default: ${DEFAULT-VALUE}).")
+    private double stressEveryS;
+
+    @Option(names = "--stress-ms", paramLabel = "MS", defaultValue = "1000",
+            description = "How long each stress activation computes, in milliseconds (default: ${DEFAULT-VALUE}).")
+    private long stressMs;
+
+    @Option(names = "--load-threads", paramLabel = "N",
+            description = "Ordinary threads that load the cores and allocate (default: one per core).")
+    private Integer loadThreads;
+
+    @Option(names = "--only", paramLabel = "RUN",
+            description = "Run only one of: ${COMPLETION-CANDIDATES} (default: both, FIFO first).")
+    private StressScenario.Variant only;
+
+    /** Whether {@code variant} is to run. */
+    public boolean runs(StressScenario.Variant variant) {
+        return only == null || only == variant;
+    }
+
+    /**
+     * The configuration these options and {@code common} give, writing to {@code scenario}'s
+     * default directory unless {@code --out} says otherwise.
+     *
+     * @throws ParameterException naming the option, if one is out of range
+     */
+    public StressConfig config(CommandLine commandLine, ScenarioOptions common, String scenario) {
+        if (!(stressEveryS > 0 && stressEveryS <= 3_600)) {
+            throw new ParameterException(commandLine, "--stress-every=" + stressEveryS
+                    + " is out of range: give the stress period in seconds, above 0 and at most 3600");
+        }
+        long stressEveryNs = Math.round(stressEveryS * 1e9);
+        if (stressMs < 1 || stressMs * 1_000_000L >= stressEveryNs || stressMs > 10_000) {
+            throw new ParameterException(commandLine, "--stress-ms=" + stressMs + " is out of range: from 1 to"
+                    + " 10000 ms and shorter than --stress-every (" + stressEveryS + " s)");
+        }
+        int threads = loadThreads != null ? loadThreads : Runtime.getRuntime().availableProcessors();
+        if (threads < 0 || threads > 256) {
+            throw new ParameterException(commandLine, "--load-threads=" + threads
+                    + " is out of range: from 0 (no load) to 256");
+        }
+        long periodNs = common.periodNs();
+        if (stressEveryNs < periodNs) {
+            throw new ParameterException(commandLine, "--stress-every=" + stressEveryS
+                    + " s is shorter than the control period --period-ms");
+        }
+        return StressConfig.defaults(common.out(scenario))
+                .withDurationNs(common.durationNs(StressConfig.DEFAULT_DURATION_NS / 1e9))
+                .withPeriodNs(periodNs)
+                .withStress(stressEveryNs, stressMs * 1_000_000L)
+                .withLoadThreads(threads);
+    }
+}
