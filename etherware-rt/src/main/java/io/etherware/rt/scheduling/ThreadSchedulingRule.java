@@ -1,5 +1,6 @@
 package io.etherware.rt.scheduling;
 
+import io.etherware.rt.platform.CpuSet;
 import io.etherware.rt.platform.ThreadPolicy;
 import java.util.ArrayList;
 import java.util.Collections;
@@ -56,6 +57,16 @@ public record ThreadSchedulingRule(List<DispatcherSpec> dispatchers) {
             return ThreadPolicy.NON_REALTIME;
         }
         return new ThreadPolicy(highest.policy(), Math.min(highest.priority() + levels, MAX_REALTIME_PRIORITY));
+    }
+
+    /** This rule with its real-time dispatchers on {@code cpus}; the others stay where they are. */
+    public ThreadSchedulingRule withRealtimeOn(CpuSet cpus) {
+        Objects.requireNonNull(cpus, "cpus");
+        var specs = new ArrayList<DispatcherSpec>(dispatchers.size());
+        for (DispatcherSpec spec : dispatchers) {
+            specs.add(spec.policy().isRealtime() ? spec.on(cpus) : spec);
+        }
+        return new ThreadSchedulingRule(specs);
     }
 
     public ThreadSchedulingRule {

@@ -236,12 +236,6 @@ class NodePriorityIsolationTest {
     }
 
     private static ThreadSchedulingRule tableIIOnOneCpu(int cpu) {
-        ThreadSchedulingRule tableII = ThreadSchedulingRule.tableII();
-        var specs = new ArrayList<DispatcherSpec>();
-        for (int id = 0; id < tableII.size(); id++) {
-            DispatcherSpec spec = tableII.dispatcher(id);
-            specs.add(spec.policy().isRealtime() ? spec.on(CpuSet.of(cpu)) : spec);
-        }
-        return new ThreadSchedulingRule(specs);
+        return ThreadSchedulingRule.tableII().withRealtimeOn(CpuSet.of(cpu));
     }
 }

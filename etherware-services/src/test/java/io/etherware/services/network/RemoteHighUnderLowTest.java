@@ -13,7 +13,6 @@ import io.etherware.rt.platform.CpuSet;
 import io.etherware.rt.platform.ThreadGrant;
 import io.etherware.rt.platform.ThreadPolicy;
 import io.etherware.rt.scheduling.CriticalityDeadlinePlacement;
-import io.etherware.rt.scheduling.DispatcherSpec;
 import io.etherware.rt.scheduling.RealtimeScheduler;
 import io.etherware.rt.scheduling.RealtimeSchedulerConfig;
 import io.etherware.rt.scheduling.ThreadSchedulingRule;
@@ -111,13 +110,7 @@ class RemoteHighUnderLowTest {
     }
 
     private static ThreadSchedulingRule tableIIOnOneCpu(int cpu) {
-        ThreadSchedulingRule tableII = ThreadSchedulingRule.tableII();
-        var specs = new ArrayList<DispatcherSpec>();
-        for (int id = 0; id < tableII.size(); id++) {
-            DispatcherSpec spec = tableII.dispatcher(id);
-            specs.add(spec.policy().isRealtime() ? spec.on(CpuSet.of(cpu)) : spec);
-        }
-        return new ThreadSchedulingRule(specs);
+        return ThreadSchedulingRule.tableII().withRealtimeOn(CpuSet.of(cpu));
     }
 
     /** Holds the CPU for {@code durationNs}, burning 1 ms and resting 1 ms in turn. */

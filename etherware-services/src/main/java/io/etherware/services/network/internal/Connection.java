@@ -216,7 +216,7 @@ final class Connection implements Runnable {
         } catch (ProtocolException e) {
             close(e.reason(), e.getMessage());
             if (e instanceof Peer.StreamResetException reset) {
-                engine.reportLost(reset.lost, peer.nodeId, "the streams with node '" + peer.nodeId
+                engine.reportLost(reset.lost, "the streams with node '" + peer.nodeId
                         + "' disagreed; its fate is unknown");
             }
         } catch (SocketTimeoutException e) {

@@ -281,7 +281,7 @@ public final class Engine {
         Peer peer = connection.peer();
         Peer.Activation activation = peer.activate(connection, hello, theirs);
         if (!activation.accepted()) {
-            reportLost(activation.lost(), peer.nodeId, "the streams with node '" + peer.nodeId
+            reportLost(activation.lost(), "the streams with node '" + peer.nodeId
                     + "' disagreed; its fate is unknown");
             if (activation.refusal() != null) {
                 connection.close(CloseReason.SEQUENCE_ERROR, activation.refusal());
@@ -310,7 +310,7 @@ public final class Engine {
             activation.loser().close(CloseReason.DUPLICATE, "replaced by the connection dialed by '"
                     + connection.initiatorId() + "'");
         }
-        reportLost(activation.lost(), peer.nodeId, "node '" + peer.nodeId + "' restarted before acknowledging it;"
+        reportLost(activation.lost(), "node '" + peer.nodeId + "' restarted before acknowledging it;"
                 + " it may or may not have been handled");
         signalStateChanged();
         return true;
@@ -380,7 +380,7 @@ public final class Engine {
     }
 
     /** See {@link Losses#reportLost}. */
-    void reportLost(List<InFlight> entries, String peerId, String reason) {
+    void reportLost(List<InFlight> entries, String reason) {
         losses.reportLost(entries, reason);
     }
 
