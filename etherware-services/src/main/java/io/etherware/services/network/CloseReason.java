@@ -13,7 +13,7 @@ public enum CloseReason {
     SHUTDOWN(1, false),
     /** The peer closed the connection (end of stream, or its BYE). */
     PEER_CLOSED(2, false),
-    /** Another connection to the same peer is kept (one connection per pair of nodes). */
+    /** Another connection to the same peer is kept (one connection per lane per pair of nodes). */
     DUPLICATE(3, false),
     /** Nothing arrived from the peer within the heartbeat timeout. */
     HEARTBEAT_TIMEOUT(4, false),

@@ -52,12 +52,21 @@ import java.util.Objects;
  *                                  handled or passed on) beyond which it stops reading from that
  *                                  peer until they drain: TCP then slows the peer down
  * @param announcePolicy            which application profiles a peer may announce here
- * @param threadPolicy              the OS policy and priority of the connections' reader and writer
- *                                  threads, or null for the default: with a {@link
+ * @param threadPolicy              the OS policy and priority of the reader and writer threads of
+ *                                  lane 0 (HIGH and MIDDLE messages; every message with one lane), or
+ *                                  null for the default: with a {@link
  *                                  io.etherware.rt.scheduling.RealtimeScheduler}, SCHED_FIFO one level
  *                                  above its highest dispatcher (so a thread that carries HIGH
  *                                  messages never waits for LOW work), otherwise ordinary threads
+ * @param bulkThreadPolicy          the same for lane 1 (LOW and NONE messages), or null for the
+ *                                  default: with a {@code RealtimeScheduler}, SCHED_FIFO one level
+ *                                  above its lowest real-time dispatcher (LOW traffic never runs
+ *                                  above MIDDLE or HIGH work), otherwise ordinary threads
  * @param cpus                      the CPUs of the reader and writer threads
+ * @param lanes                     connections per pair of nodes: 2 (default) carries HIGH and MIDDLE
+ *                                  messages on one and LOW and NONE on the other, each with its own
+ *                                  stream, queue and threads, so a HIGH message never waits behind
+ *                                  LOW bytes; 1 carries everything on one (both nodes must agree)
  * @param insecure                  whether plain, unauthenticated links beyond loopback were chosen
  *                                  on purpose ({@link Builder#insecure}); without it a messenger
  *                                  whose factory does not authenticate peers only listens on and
@@ -71,7 +80,7 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
                             long timeProbeIntervalNs, int timeProbeBurst, int timeWindowSize, int maxConnections,
                             int maxHops, int maxPendingHandshakes, long maxQueuedBytesPerPeer,
                             long maxInboundBytesPerPeer, AnnouncePolicy announcePolicy, ThreadPolicy threadPolicy,
-                            CpuSet cpus, boolean insecure) {
+                            ThreadPolicy bulkThreadPolicy, CpuSet cpus, boolean insecure, int lanes) {
 
     /** Default {@link #maxFrameBytes}: 1 MiB. */
     public static final int DEFAULT_MAX_FRAME_BYTES = 1 << 20;
@@ -112,12 +121,9 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
         requireRange("maxInboundBytesPerPeer", maxInboundBytesPerPeer, 2L * maxFrameBytes, 1L << 40);
         Objects.requireNonNull(announcePolicy, "announcePolicy=null: use AnnouncePolicy.any()");
         Objects.requireNonNull(cpus, "cpus=null: use CpuSet.inherit()");
-        if (threadPolicy != null && threadPolicy.isRealtime()
-                && (threadPolicy.priority() < ThreadSchedulingRule.MIN_REALTIME_PRIORITY
-                || threadPolicy.priority() > ThreadSchedulingRule.MAX_REALTIME_PRIORITY)) {
-            throw new IllegalArgumentException("threadPolicy.priority=" + threadPolicy.priority() + " must be in "
-                    + ThreadSchedulingRule.MIN_REALTIME_PRIORITY + ".." + ThreadSchedulingRule.MAX_REALTIME_PRIORITY);
-        }
+        requirePriority("threadPolicy", threadPolicy);
+        requirePriority("bulkThreadPolicy", bulkThreadPolicy);
+        requireRange("lanes", lanes, 1, 2);
         if (!connectionFactory.authenticatesPeers() && !insecure) {
             requireLoopback("listenAddress", listenAddress);
             for (InetSocketAddress peer : peers) {
@@ -156,6 +162,14 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
         }
     }
 
+    private static void requirePriority(String field, ThreadPolicy policy) {
+        if (policy != null && policy.isRealtime() && (policy.priority() < ThreadSchedulingRule.MIN_REALTIME_PRIORITY
+                || policy.priority() > ThreadSchedulingRule.MAX_REALTIME_PRIORITY)) {
+            throw new IllegalArgumentException(field + ".priority=" + policy.priority() + " must be in "
+                    + ThreadSchedulingRule.MIN_REALTIME_PRIORITY + ".." + ThreadSchedulingRule.MAX_REALTIME_PRIORITY);
+        }
+    }
+
     private static void requirePositive(String field, long valueNs) {
         if (valueNs <= 0) {
             throw new IllegalArgumentException(field + "=" + valueNs + " must be > 0");
@@ -176,9 +190,12 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
      * 10 s loses its messages and routes; NetworkTime burst of 8 exchanges, then one per second,
      * filter window {@value NetworkTime#DEFAULT_WINDOW_SIZE}; 64 connections, of which 16 in their
      * handshake; 4 relays; 64 MiB queued or unacknowledged per peer, 64 MiB of a peer's messages
-     * held here; any peer may announce any application profile; reader and writer threads one real-time level above the highest
-     * dispatcher of a real-time scheduler (ordinary threads with another scheduler), every CPU; not
-     * insecure (plain TCP only on loopback).
+     * held here; any peer may announce any application profile; two lanes per pair of nodes, the
+     * reader and writer threads of lane 0 one real-time level above the highest dispatcher of a
+     * real-time scheduler and those of lane 1 one level above its lowest real-time dispatcher
+     * (ordinary threads with another scheduler), every CPU; not insecure (plain TCP only on
+     * loopback). Queue bounds ({@code queueCapacity}, {@code windowMessages},
+     * {@code maxQueuedBytesPerPeer}) hold for each lane.
      *
      * <p>Not thread-safe; use it on one thread.
      */
@@ -208,8 +225,10 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
         private long maxInboundBytesPerPeer = 64L << 20;
         private AnnouncePolicy announcePolicy = AnnouncePolicy.any();
         private ThreadPolicy threadPolicy;
+        private ThreadPolicy bulkThreadPolicy;
         private CpuSet cpus = CpuSet.inherit();
         private boolean insecure;
+        private int lanes = 2;
 
         Builder() {
         }
@@ -335,11 +354,29 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
         }
 
         /**
-         * The OS policy and priority of the reader and writer threads ({@link ThreadPolicy#NON_REALTIME}
-         * for ordinary threads), instead of the default that follows the node's scheduler.
+         * The OS policy and priority of every lane's reader and writer threads ({@link
+         * ThreadPolicy#NON_REALTIME} for ordinary threads), instead of the defaults that follow the
+         * node's scheduler; {@link #bulkLaneThreads} then sets lane 1's apart.
          */
         public Builder threads(ThreadPolicy policy) {
             threadPolicy = Objects.requireNonNull(policy, "policy");
+            bulkThreadPolicy = policy;
+            return this;
+        }
+
+        /** The OS policy and priority of lane 1's (LOW and NONE messages) reader and writer threads. */
+        public Builder bulkLaneThreads(ThreadPolicy policy) {
+            bulkThreadPolicy = Objects.requireNonNull(policy, "policy");
+            return this;
+        }
+
+        /**
+         * Connections per pair of nodes, 1 or 2 (default 2: HIGH and MIDDLE messages on lane 0, LOW
+         * and NONE on lane 1). Every node of a deployment must use the same number: a peer with
+         * another is refused at the handshake.
+         */
+        public Builder lanes(int value) {
+            lanes = value;
             return this;
         }
 
@@ -380,7 +417,8 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
                     queueCapacity, windowMessages, heartbeatIntervalNs, heartbeatTimeoutNs, handshakeTimeoutNs,
                     connectTimeoutNs, reconnectInitialBackoffNs, reconnectMaxBackoffNs, reconnectJitter, peerDownGraceNs,
                     timeProbeIntervalNs, timeProbeBurst, timeWindowSize, maxConnections, maxHops, maxPendingHandshakes,
-                    maxQueuedBytesPerPeer, maxInboundBytesPerPeer, announcePolicy, threadPolicy, cpus, insecure);
+                    maxQueuedBytesPerPeer, maxInboundBytesPerPeer, announcePolicy, threadPolicy, bulkThreadPolicy, cpus,
+                    insecure, lanes);
         }
     }
 }

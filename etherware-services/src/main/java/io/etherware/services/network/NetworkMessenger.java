@@ -28,8 +28,11 @@ import java.util.Optional;
  * }
  * }</pre>
  *
- * <p>What it does. One TCP connection per pair of nodes (when both dial, the connection dialed
- * by the lower node id is kept), with TCP_NODELAY; frames of a length, a type and a body, the
+ * <p>What it does. Two TCP connections per pair of nodes, the lanes (when both dial, the
+ * connection dialed by the lower node id is kept), with TCP_NODELAY: lane 0 carries HIGH and
+ * MIDDLE messages, lane 1 LOW and NONE, each with its own streams, queue and threads, so a HIGH
+ * message never waits behind LOW bytes on the wire, and messages of one lane keep their order
+ * (messages of different criticality never had one: the dispatchers reorder them too); frames of a length, a type and a body, the
  * messages themselves as the XML of {@link io.etherware.core.codec.MessageCodec} (see
  * {@code NETWORK-PROTOCOL.md}). Each node announces the profiles it hosts when a connection opens
  * and whenever they change; the others register a route for each in their registry, so
@@ -49,9 +52,10 @@ import java.util.Optional;
  * writer per connection, so a slow or dead peer holds up nobody else. A connection's reader
  * decodes each message and hands it to the kernel, which queues it for a dispatcher, or, for a
  * reply to a request whose requester waits on its future, completes that future on the reader
- * thread itself. Once a connection is established its reader and writer run at
- * {@link #ioThreadPolicy()}, above the node's dispatchers by default, so LOW work never holds up
- * the threads that carry HIGH messages. Start the node before the messenger
+ * thread itself. Once a connection is established its reader and writer run at its lane's
+ * {@link #ioThreadPolicy(int)}: by default lane 0 above the node's dispatchers, so LOW work never
+ * holds up the threads that carry HIGH messages, and lane 1 just above the LOW dispatcher, so LOW
+ * traffic never holds up MIDDLE or HIGH work. Start the node before the messenger
  * (messages may arrive at once) and close the messenger before the node; a node that closes
  * first closes its messenger too.
  */
@@ -135,12 +139,22 @@ public final class NetworkMessenger implements AutoCloseable {
     }
 
     /**
-     * The OS policy its reader and writer threads ask for: {@link NetworkConfig#threadPolicy()}, or
-     * by default one real-time level above the highest dispatcher of the node's
-     * {@code RealtimeScheduler} (ordinary threads with another scheduler).
+     * The OS policy the reader and writer threads of lane 0 (HIGH and MIDDLE messages) ask for; see
+     * {@link #ioThreadPolicy(int)}.
      */
     public ThreadPolicy ioThreadPolicy() {
-        return engine.ioThreadPolicy();
+        return engine.ioThreadPolicy(0);
+    }
+
+    /**
+     * The OS policy the reader and writer threads of {@code lane} ask for: {@link
+     * NetworkConfig#threadPolicy()} (lane 0) or {@link NetworkConfig#bulkThreadPolicy()} (lane 1),
+     * or by default, with the node's {@code RealtimeScheduler}, one real-time level above its
+     * highest dispatcher (lane 0) or its lowest real-time one (lane 1); ordinary threads with
+     * another scheduler.
+     */
+    public ThreadPolicy ioThreadPolicy(int lane) {
+        return engine.ioThreadPolicy(lane);
     }
 
     /** The counters now. */

@@ -259,10 +259,10 @@ class HostileFloodTest {
     /** A complete HELLO frame as {@code nodeId}. */
     private static byte[] hello(String nodeId) {
         byte[] id = nodeId.getBytes(StandardCharsets.UTF_8);
-        int length = 1 + 4 + 2 + 2 + id.length + 8 + 8 + 4;
+        int length = 1 + 4 + 2 + 2 + id.length + 8 + 8 + 4 + 1 + 1;
         return ByteBuffer.allocate(4 + length).putInt(length).put(RawPeer.HELLO).putInt(RawPeer.MAGIC)
-                .putShort((short) 1).putShort((short) id.length).put(id).putLong(1).putLong(0).putInt(1 << 20)
-                .array();
+                .putShort((short) RawPeer.VERSION).putShort((short) id.length).put(id).putLong(1).putLong(0)
+                .putInt(1 << 20).put((byte) 2).put((byte) 0).array();
     }
 
     private static void closeQuietly(Socket socket) {

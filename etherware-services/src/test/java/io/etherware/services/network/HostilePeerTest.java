@@ -119,26 +119,27 @@ class HostilePeerTest {
     void shouldKeepAnImpostorOfTheLegitPeerOutAtTheHandshakeOverTls() throws Exception {
         // Another node's valid certificate, HELLO naming the legitimate peer.
         try (var impostor = mallory("mallory", target.address())) {
-            impostor.hello(RawPeer.MAGIC, 1, "legit");
+            impostor.hello(RawPeer.MAGIC, RawPeer.VERSION, "legit");
             assertRefused(impostor);
         }
         // No certificate: a TLS client that trusts the deployment's CA but has no key.
         try (var impostor = new RawPeer(withoutCertificate(target.address()))) {
-            impostor.hello(RawPeer.MAGIC, 1, "legit");
+            impostor.hello(RawPeer.MAGIC, RawPeer.VERSION, "legit");
             assertRefused(impostor);
         } catch (IOException refused) {
             // The TLS 1.3 server refuses the missing certificate after the client's side completed.
         }
         // Plain TCP speaking the protocol to the TLS port: what comes back is no HELLO frame.
         try (var impostor = new RawPeer(target.address())) {
-            impostor.hello(RawPeer.MAGIC, 1, "legit");
+            impostor.hello(RawPeer.MAGIC, RawPeer.VERSION, "legit");
             byte[] answer = impostor.readRawUntilClosed(64);
             assertFalse(answer.length >= 5 && answer[0] == 0 && answer[4] == RawPeer.HELLO,
                     "the node answered plain TCP with a HELLO");
         }
         Await.until("the target refused all three", () ->
                 target.net.stats().closes(CloseReason.AUTHENTICATION_FAILED) == 3);
-        assertEquals(1, target.net.stats().connectionsOpened(), "only the legitimate one: " + target.net.stats());
+        assertEquals(TestNode.LANES, target.net.stats().connectionsOpened(), "only the legitimate peer's lanes: "
+                + target.net.stats());
         assertEquals(3, target.net.stats().handshakesFailed(), target.net.stats().toString());
         assertTheLegitPeerLostNothing();
     }

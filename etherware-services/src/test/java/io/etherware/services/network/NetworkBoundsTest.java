@@ -63,9 +63,11 @@ class NetworkBoundsTest {
         int frame = 256 * 1024;
         String sixtyFourKiB = "y".repeat(64 * 1024 - 16);
         // b holds at most two frames of a's messages, then stops reading: what a has written and b
-        // has not acknowledged stays in flight, where a's LOW budget (128 KiB) must bound it.
-        try (var b = TestNode.start("b", TestNode.config().maxFrameBytes(frame).maxInboundBytesPerPeer(2L * frame));
-             var a = TestNode.start("a", TestNode.config().maxFrameBytes(frame).peer(b.address()))) {
+        // has not acknowledged stays in flight, where a's LOW budget (128 KiB) must bound it. One
+        // lane: with two, LOW never shares a connection with HIGH and needs no budget.
+        try (var b = TestNode.start("b", TestNode.config().lanes(1).maxFrameBytes(frame)
+                .maxInboundBytesPerPeer(2L * frame));
+             var a = TestNode.start("a", TestNode.config().lanes(1).maxFrameBytes(frame).peer(b.address()))) {
             b.node.add(SLOW, () -> (message, context) -> {
                 assertTrue(gate.await(60, TimeUnit.SECONDS));
                 received.add(Long.parseLong(message.contentsAs(Text.class).text().substring(0, 8).trim()));

@@ -20,6 +20,8 @@ final class RawPeer implements AutoCloseable {
 
     static final int MAGIC = 0x45575254;
     static final byte HELLO = 1;
+    /** The protocol version this peer speaks. */
+    static final int VERSION = 2;
     static final byte RESUME = 2;
     static final byte DATA = 3;
     static final byte ACK = 4;
@@ -93,6 +95,11 @@ final class RawPeer implements AutoCloseable {
     }
 
     void hello(int magic, int version, String nodeId) throws IOException {
+        hello(magic, version, nodeId, 0);
+    }
+
+    /** A HELLO that dials {@code lane} of the two lanes the nodes under test run. */
+    void hello(int magic, int version, String nodeId, int lane) throws IOException {
         frame(HELLO, body(out -> {
             out.writeInt(magic);
             out.writeShort(version);
@@ -100,12 +107,14 @@ final class RawPeer implements AutoCloseable {
             out.writeLong(0x1234_5678_9abcL); // incarnation
             out.writeLong(System.currentTimeMillis() * 1_000_000L);
             out.writeInt(1 << 20);
+            out.writeByte(2); // lanes, as the nodes under test run
+            out.writeByte(lane);
         }));
     }
 
     /** A complete handshake as {@code nodeId} on stream 1, knowing nothing of the node. */
     void handshake(String nodeId) throws IOException {
-        hello(MAGIC, 1, nodeId);
+        hello(MAGIC, VERSION, nodeId);
         expect(HELLO);
         frame(RESUME, body(out -> {
             out.writeLong(1);
@@ -121,7 +130,7 @@ final class RawPeer implements AutoCloseable {
      * the node's stream id.
      */
     long handshakeClaiming(String nodeId, long streamId, long claimed) throws IOException {
-        hello(MAGIC, 1, nodeId);
+        hello(MAGIC, VERSION, nodeId);
         expect(HELLO);
         long nodeStreamId = java.nio.ByteBuffer.wrap(expect(RESUME).body()).getLong();
         frame(RESUME, body(out -> {
@@ -138,7 +147,7 @@ final class RawPeer implements AutoCloseable {
 
     /** Sends HELLO as {@code nodeId}, reads the node's HELLO and RESUME; our RESUME is the caller's to send. */
     Resume introduce(String nodeId) throws IOException {
-        hello(MAGIC, 1, nodeId);
+        hello(MAGIC, VERSION, nodeId);
         expect(HELLO);
         var body = java.nio.ByteBuffer.wrap(expect(RESUME).body());
         return new Resume(body.getLong(), body.getLong(), body.getLong());

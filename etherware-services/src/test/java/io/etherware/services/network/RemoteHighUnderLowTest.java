@@ -59,7 +59,9 @@ class RemoteHighUnderLowTest {
             }
             assumeTrue(high.granted().isRealtime(), refused);
             assertEquals(ThreadPolicy.fifo(ThreadSchedulingRule.HIGH_PRIORITY + 1), b.net.ioThreadPolicy(),
-                    "B's network threads sit above its HIGH dispatcher");
+                    "B's lane 0 (HIGH, MIDDLE) threads sit above its HIGH dispatcher");
+            assertEquals(ThreadPolicy.fifo(ThreadSchedulingRule.LOW_PRIORITY + 1), b.net.ioThreadPolicy(1),
+                    "B's lane 1 (LOW, NONE) threads sit just above its LOW dispatcher, below MIDDLE and HIGH");
             assertEquals(ThreadPolicy.NON_REALTIME, a.net.ioThreadPolicy(), "A has the original FIFO scheduler");
 
             b.node.add(SENSOR, () -> (message, context) -> context.reply(message, new Text("21.5")));

@@ -18,6 +18,9 @@ final class TestNode implements AutoCloseable {
     }
 
     /** Test defaults: loopback, any port, redial after 20 ms up to 200 ms, time probes every 100 ms. */
+    /** Connections per pair of nodes by default: one per lane. */
+    static final int LANES = 2;
+
     static NetworkConfig.Builder config() {
         Num.register();
         return NetworkConfig.builder()

@@ -34,7 +34,7 @@ class BenchCommandIT {
             "codec.xml.encode.angles", "codec.json.encode.angles", "codec.xml.decode.angles",
             "codec.json.decode.angles",
             "loopback.messenger", "loopback.raw", "loopback.ratio.p50", "loopback.ratio.p99",
-            "loopback.messenger.high-under-low",
+            "loopback.messenger.high-under-low", "loopback.messenger.high-under-low.one-lane", "loopback.messenger.rt-idle",
             "gap.upgrade", "gap.migration",
             "gc.pauses");
 

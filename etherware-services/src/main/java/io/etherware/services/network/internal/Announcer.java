@@ -97,15 +97,18 @@ final class Announcer implements ProfileRegistry.Listener {
         byte[] next = FrameWriter.announceBody(++version, all);
         body = next;
         for (Peer peer : peers) {
-            peer.lock.lock();
-            try {
-                Connection active = peer.active();
-                if (active != null) {
-                    active.requests.announce(next);
-                    peer.work.signal();
+            // Every lane: each carries the announcement ahead of its own later messages.
+            for (Link link : peer.links()) {
+                link.lock.lock();
+                try {
+                    Connection active = link.active();
+                    if (active != null) {
+                        active.requests.announce(next);
+                        link.work.signal();
+                    }
+                } finally {
+                    link.lock.unlock();
                 }
-            } finally {
-                peer.lock.unlock();
             }
         }
     }

@@ -10,8 +10,6 @@ import java.io.IOException;
 import java.io.InputStream;
 import java.net.Socket;
 import java.net.SocketTimeoutException;
-import java.util.ArrayList;
-import java.util.List;
 import java.util.concurrent.TimeUnit;
 import javax.net.ssl.SSLException;
 
@@ -28,6 +26,9 @@ import javax.net.ssl.SSLException;
  */
 final class Connection implements Runnable {
 
+    private static final org.slf4j.Logger log =
+            org.slf4j.LoggerFactory.getLogger("io.etherware.services.network.NetworkMessenger");
+
     /** How long a closing connection waits for its writer to say BYE, and drains the input. */
     private static final long CLOSE_GRACE_MS = 500;
     /** Most messages a writer takes in one turn. */
@@ -36,19 +37,21 @@ final class Connection implements Runnable {
     /** A receiver acknowledges at least every this many bytes of messages. */
     static final int ACK_EVERY_BYTES = 64 * 1024;
 
-    private final Engine engine;
+    private final NetworkContext context;
+    private final ConnectionEvents events;
     private final Socket socket;
     private final Dialer dialer;
     private final String remote;
+    /** The lane this connection carries: the dialer's, or the one the dialing peer's HELLO names. */
+    private volatile int lane;
     private volatile Peer peer;
+    /** The peer's link of this lane, once the HELLO said who the peer is. */
+    private volatile Link link;
     private Frame.Hello hello;
     /** The node id the connection authenticated (TLS), or null on a plain link. */
     private String authenticatedId;
     private FrameReader reader;
     private FrameWriter writer;
-    private int peerMaxFrameBytes;
-    /** Unacknowledged bytes below which a sender may write directly without ever blocking. */
-    private int directBudgetBytes;
     private volatile Thread readerThread;
     private volatile Thread writerThread;
     private volatile boolean closing;
@@ -59,16 +62,8 @@ final class Connection implements Runnable {
     /** What the writer is asked to send besides messages; guarded by the peer's lock. */
     final WriterRequests requests = new WriterRequests();
 
-    private volatile long lastWriteNs;
-    /** When the writer thread's current write began, or 0. */
-    private volatile long writingSinceNs;
-    private volatile long lastAckSent;
-    /** Bytes framed on this connection; written by whoever owns the output. */
-    private volatile long bytesWritten;
-    /** Where the last message frame written ends. */
-    private volatile long lastDataEndOffset;
-    /** Bytes the peer has certainly read: up to the last message frame, once all were acknowledged. */
-    private volatile long readByPeerOffset;
+    /** The output side, once the handshake has written its frames. */
+    private volatile ConnectionOutput output;
 
     /** Reader thread only: message bytes received since the last acknowledgement was asked for. */
     private long bytesSinceAckRequest;
@@ -80,13 +75,14 @@ final class Connection implements Runnable {
     /**
      * @param dialer the dialer that opened it, or null for an accepted connection
      */
-    Connection(Engine engine, Socket socket, Dialer dialer) {
-        this.engine = engine;
+    Connection(NetworkContext context, ConnectionEvents events, Socket socket, Dialer dialer) {
+        this.context = context;
+        this.events = events;
         this.socket = socket;
         this.dialer = dialer;
+        this.lane = dialer != null ? dialer.lane : 0;
         this.remote = String.valueOf(socket.getRemoteSocketAddress());
-        this.lastWriteNs = engine.nowNs();
-        this.nextProbeNs = lastWriteNs;
+        this.nextProbeNs = NetworkContext.nowNs();
     }
 
     // ---------------------------------------------------------------- the reader thread
@@ -97,25 +93,26 @@ final class Connection implements Runnable {
         try {
             handshake();
         } catch (ProtocolException e) {
-            engine.counters().handshakesFailed.increment();
+            context.counters().handshakesFailed.increment();
             close(e.reason(), e.getMessage());
             return;
         } catch (SocketTimeoutException e) {
-            engine.counters().handshakesFailed.increment();
+            context.counters().handshakesFailed.increment();
             close(CloseReason.HANDSHAKE_TIMEOUT, "no handshake within "
-                    + TimeUnit.NANOSECONDS.toMillis(engine.config().handshakeTimeoutNs()) + " ms");
+                    + TimeUnit.NANOSECONDS.toMillis(context.config().handshakeTimeoutNs()) + " ms");
             return;
         } catch (IOException e) {
-            engine.counters().handshakesFailed.increment();
+            context.counters().handshakesFailed.increment();
             close(closing ? CloseReason.SHUTDOWN : CloseReason.IO_ERROR, "handshake failed: " + e);
             return;
         } finally {
-            engine.handshakeEnded(this);
+            events.handshakeEnded(this);
         }
         if (!activated) {
             return;
         }
-        Thread writing = new ConnectionThread(this::writeLoop, "etherware-net-" + engine.nodeId() + "-write-" + peer.nodeId);
+        Thread writing = new ConnectionThread(this::writeLoop, "etherware-net-" + context.nodeId() + "-write-"
+                + laneName());
         writerThread = writing;
         writing.start();
         readLoop();
@@ -124,77 +121,84 @@ final class Connection implements Runnable {
     private void handshake() throws IOException {
         socket.setTcpNoDelay(true);
         socket.setKeepAlive(true);
-        socket.setSoTimeout((int) Math.max(1, TimeUnit.NANOSECONDS.toMillis(engine.config().handshakeTimeoutNs())));
+        socket.setSoTimeout((int) Math.max(1, TimeUnit.NANOSECONDS.toMillis(context.config().handshakeTimeoutNs())));
         try {
-            authenticatedId = engine.config().connectionFactory().authenticate(socket).orElse(null);
+            authenticatedId = context.config().connectionFactory().authenticate(socket).orElse(null);
         } catch (SocketTimeoutException e) {
             throw e;
         } catch (SSLException e) {
             throw new ProtocolException(CloseReason.AUTHENTICATION_FAILED, "TLS handshake failed: " + e.getMessage(), e);
         }
-        reader = new FrameReader(socket.getInputStream(), engine.config().maxFrameBytes());
+        reader = new FrameReader(socket.getInputStream(), context.config().maxFrameBytes());
         writer = new FrameWriter(socket.getOutputStream());
-        writer.hello(new Frame.Hello(Frame.VERSION, engine.nodeId(), engine.incarnation(),
-                engine.kernel().clock().epochNanos(), engine.config().maxFrameBytes()));
+        int lanes = context.lanes().size();
+        writer.hello(new Frame.Hello(Frame.VERSION, context.nodeId(), context.incarnation(),
+                context.kernel().clock().epochNanos(), context.config().maxFrameBytes(), lanes, lane));
         writer.flush();
         hello = reader.readHello();
-        long helloArrivedEpochNs = engine.kernel().clock().epochNanos();
+        long helloArrivedEpochNs = context.kernel().clock().epochNanos();
         if (authenticatedId != null && !authenticatedId.equals(hello.nodeId())) {
             throw new ProtocolException(CloseReason.AUTHENTICATION_FAILED, "the peer's certificate names node '"
                     + authenticatedId + "' but its HELLO says '" + hello.nodeId() + "'");
         }
-        if (hello.nodeId().equals(engine.nodeId())) {
+        if (hello.nodeId().equals(context.nodeId())) {
             throw new ProtocolException(CloseReason.BAD_HANDSHAKE, "the peer has this node's id '" + hello.nodeId()
                     + "': node ids must be unique (or a node dialed itself)");
         }
-        if (dialer != null) {
+        if (hello.lanes() != lanes) {
+            throw new ProtocolException(CloseReason.BAD_HANDSHAKE, "node '" + hello.nodeId() + "' runs "
+                    + hello.lanes() + " lanes per pair of nodes, this node " + lanes
+                    + ": give every node the same NetworkConfig.lanes");
+        }
+        if (dialer == null) {
+            lane = hello.lane();
+        } else {
             dialer.identified(hello.nodeId());
         }
-        peerMaxFrameBytes = Math.min(hello.maxFrameBytes(), engine.config().maxFrameBytes());
-        // A quarter of the send buffer: the kernel counts its own overhead against the rest.
-        directBudgetBytes = Math.min(DIRECT_BUDGET_MAX_BYTES, socket.getSendBufferSize() / 4);
-        Peer known = engine.peer(hello.nodeId());
-        peer = known;
-        writer.resume(known.resumeState());
+        peer = events.peer(hello.nodeId());
+        link = peer.link(lane);
+        writer.resume(link.resumeState());
         writer.flush();
         Frame second = reader.next();
         if (!(second instanceof Frame.Resume theirs)) {
             throw new ProtocolException(CloseReason.BAD_HANDSHAKE, "expected RESUME after HELLO, got "
                     + second.getClass().getSimpleName());
         }
-        bytesWritten = writer.bytes();
-        Thread.currentThread().setName("etherware-net-" + engine.nodeId() + "-read-" + known.nodeId);
-        engine.handshakeEnded(this); // no longer a pending handshake that a flood could push out
-        activated = engine.activate(this, hello, theirs, helloArrivedEpochNs);
-        socket.setSoTimeout((int) Math.max(1, TimeUnit.NANOSECONDS.toMillis(engine.config().heartbeatTimeoutNs())));
+        // A quarter of the send buffer: the kernel counts its own overhead against the rest.
+        output = new ConnectionOutput(writer, context, link, peer.nodeId,
+                Math.min(hello.maxFrameBytes(), context.config().maxFrameBytes()),
+                Math.min(DIRECT_BUDGET_MAX_BYTES, socket.getSendBufferSize() / 4));
+        Thread.currentThread().setName("etherware-net-" + context.nodeId() + "-read-" + laneName());
+        events.handshakeEnded(this); // no longer a pending handshake that a flood could push out
+        activated = events.activate(this, hello, theirs, helloArrivedEpochNs);
+        socket.setSoTimeout((int) Math.max(1, TimeUnit.NANOSECONDS.toMillis(context.config().heartbeatTimeoutNs())));
     }
 
     private void readLoop() {
-        engine.configureIoThread();
+        context.lanes().get(lane).configureCurrent();
         try {
             while (!closing) {
                 switch (reader.next()) {
                     case Frame.Data data -> onData(data);
-                    case Frame.Ack ack -> peer.onAck(this, ack.count());
+                    case Frame.Ack ack -> link.onAck(this, ack.count());
                     case Frame.Heartbeat heartbeat -> { }
                     case Frame.Announce announced -> {
-                        if (peer.active() == this) {
-                            engine.routes().announce(peer, announced.profiles());
-                            engine.signalStateChanged();
+                        if (link.active() == this) {
+                            events.announced(peer, announced);
                         }
                     }
-                    case Frame.TimeRequest request -> requestTimeReply(request.t1(), engine.kernel().clock().epochNanos());
-                    case Frame.TimeReply reply -> engine.networkTime().onExchange(peer.nodeId,
-                            new TimeSample(reply.t1(), reply.t2(), reply.t3(), engine.kernel().clock().epochNanos()));
+                    case Frame.TimeRequest request -> requestTimeReply(request.t1(), context.kernel().clock().epochNanos());
+                    case Frame.TimeReply reply -> context.networkTime().onExchange(peer.nodeId,
+                            new TimeSample(reply.t1(), reply.t2(), reply.t3(), context.kernel().clock().epochNanos()));
                     case Frame.Reject rejected -> {
-                        Outgoing refused = peer.onReject(this, rejected.seq());
+                        Outgoing refused = link.onReject(this, rejected.seq());
                         if (refused != null) {
-                            engine.lost(refused.message(), "node '" + peer.nodeId + "' refused it: " + rejected.reason());
+                            context.losses().lost(refused.message(), "node '" + peer.nodeId + "' refused it: " + rejected.reason());
                         }
                     }
                     case Frame.Bye goodbye -> {
-                        if (CloseReason.ofCode(goodbye.code()) == CloseReason.SHUTDOWN && peer.active() == this) {
-                            engine.peerShutDown(peer);
+                        if (CloseReason.ofCode(goodbye.code()) == CloseReason.SHUTDOWN && link.active() == this) {
+                            events.peerShutDown(peer);
                         }
                         close(CloseReason.PEER_CLOSED, "node '" + peer.nodeId + "' closed the connection: "
                                 + CloseReason.ofCode(goodbye.code()) + ": " + goodbye.text());
@@ -206,22 +210,22 @@ final class Connection implements Runnable {
                 }
             }
         } catch (RefusedMessageException e) {
-            peer.lock.lock();
+            link.lock.lock();
             try {
                 requests.reject(new Frame.Reject(e.seq, e.getMessage()));
             } finally {
-                peer.lock.unlock();
+                link.lock.unlock();
             }
             close(e.reason(), e.getMessage());
         } catch (ProtocolException e) {
             close(e.reason(), e.getMessage());
-            if (e instanceof Peer.StreamResetException reset) {
-                engine.reportLost(reset.lost, "the streams with node '" + peer.nodeId
+            if (e instanceof StreamResetException reset) {
+                context.losses().reportLost(reset.lost, "the streams with node '" + peer.nodeId
                         + "' disagreed; its fate is unknown");
             }
         } catch (SocketTimeoutException e) {
             close(CloseReason.HEARTBEAT_TIMEOUT, "nothing from node '" + peer.nodeId + "' for "
-                    + TimeUnit.NANOSECONDS.toMillis(engine.config().heartbeatTimeoutNs()) + " ms");
+                    + TimeUnit.NANOSECONDS.toMillis(context.config().heartbeatTimeoutNs()) + " ms");
         } catch (EOFException e) {
             close(CloseReason.PEER_CLOSED, "node '" + peer.nodeId + "' closed the connection");
         } catch (IOException e) {
@@ -244,29 +248,29 @@ final class Connection implements Runnable {
     }
 
     private void onData(Frame.Data data) throws ProtocolException {
-        peer.onAck(this, data.ack());
+        link.onAck(this, data.ack());
         awaitInboundRoom(data.xml().length);
-        boolean delivered = peer.deliverInOrder(this, data.seq(), () -> {
+        boolean delivered = link.deliverInOrder(this, data.seq(), () -> {
             Message message;
             try {
-                message = engine.codec().decode(data.xml());
+                message = context.config().codec().decode(data.xml());
             } catch (MessageFormatException e) {
                 throw new RefusedMessageException(data.seq(), CloseReason.MALFORMED_MESSAGE, "does not decode: "
                         + e.getMessage(), e);
             }
-            engine.deliverLocally(engine.networkTime().toLocal(peer.nodeId, message.withOrigin(originOf(data, message))));
+            deliverLocally(context.networkTime().toLocal(peer.nodeId, message.withOrigin(originOf(data, message))));
         });
         if (!delivered) {
-            if (peer.active() != this) {
+            if (link.active() != this) {
                 return; // replaced: the new connection carries the stream on, and closes this one
             }
-            engine.counters().duplicates.increment();
+            context.counters().duplicates.increment();
         } else {
             bytesSinceAckRequest += data.xml().length;
-            if (peer.inboundCount() - lastAckSent >= engine.config().windowMessages() / 4
+            if (link.inboundCount() - output.lastAckSent() >= context.config().windowMessages() / 4
                     || bytesSinceAckRequest >= ACK_EVERY_BYTES) {
                 // By count for small messages, by bytes for large ones: a sender keeps at most
-                // Peer.LOW_IN_FLIGHT_BYTES of LOW messages unacknowledged.
+                // Link.LOW_IN_FLIGHT_BYTES of LOW messages (one lane) unacknowledged.
                 bytesSinceAckRequest = 0;
                 requestAck();
             }
@@ -293,17 +297,18 @@ final class Connection implements Runnable {
 
     /**
      * Waits, not reading, while this peer's messages held in the kernel's queues and this one
-     * would exceed {@link io.etherware.services.network.NetworkConfig#maxInboundBytesPerPeer}: the
-     * peer's writes then back up over TCP, and a peer that floods a slow component is slowed down
-     * instead of filling the heap. Polls every millisecond; ends when the connection closes.
+     * would exceed {@link io.etherware.services.network.NetworkConfig#maxInboundBytesPerPeer} (half
+     * of it on lane 1, so LOW messages never take the room of HIGH ones): the peer's writes then
+     * back up over TCP, and a peer that floods a slow component is slowed down instead of filling
+     * the heap. Polls every millisecond; ends when the connection closes.
      */
     private void awaitInboundRoom(int bytes) {
-        long max = engine.config().maxInboundBytesPerPeer();
-        if (engine.kernel().queuedBytesFrom(peer.nodeId) + bytes <= max) {
+        long max = context.config().maxInboundBytesPerPeer() / (lane == 0 ? 1 : 2);
+        if (context.kernel().queuedBytesFrom(peer.nodeId) + bytes <= max) {
             return;
         }
-        engine.counters().inboundPauses.increment();
-        while (!closing && engine.kernel().queuedBytesFrom(peer.nodeId) + bytes > max) {
+        context.counters().inboundPauses.increment();
+        while (!closing && context.kernel().queuedBytesFrom(peer.nodeId) + bytes > max) {
             java.util.concurrent.locks.LockSupport.parkNanos(1_000_000);
         }
     }
@@ -311,21 +316,21 @@ final class Connection implements Runnable {
     // ---------------------------------------------------------------- the writer thread
 
     private void writeLoop() {
-        engine.configureIoThread();
+        context.lanes().get(lane).configureCurrent();
         try {
             while (true) {
-                WriterTurn turn = peer.nextTurn(this, BATCH);
+                WriterTurn turn = link.nextTurn(this, BATCH);
                 if (turn == null) {
                     return;
                 }
                 try {
-                    write(turn);
+                    output.write(this, turn);
                     if (turn.isLast()) {
                         socket.shutdownOutput();
                         return;
                     }
                 } finally {
-                    peer.endTurn();
+                    link.endTurn();
                 }
             }
         } catch (IOException e) {
@@ -338,152 +343,15 @@ final class Connection implements Runnable {
         }
     }
 
-    private void write(WriterTurn turn) throws IOException {
-        writingSinceNs = engine.nowNs();
-        try {
-            writeTurn(turn);
-        } finally {
-            writingSinceNs = 0;
-        }
-    }
-
-    /**
-     * How long the current write has been blocked (0: none in progress): a peer that reads nothing
-     * fills the socket's buffers, and the writer's next write never returns.
-     */
-    long writeBlockedForNs(long nowNs) {
-        long since = writingSinceNs;
-        return since == 0 ? 0 : nowNs - since;
-    }
-
-    private void writeTurn(WriterTurn turn) throws IOException {
-        long ackNow = peer.inboundCount();
-        boolean carriedAck = false;
-        if (turn.reject != null) {
-            writer.reject(turn.reject.seq(), turn.reject.reason());
-        }
-        if (turn.announce != null) {
-            writer.announce(turn.announce);
-        }
-        for (InFlight again : turn.resend) {
-            writer.data(again.seq(), ackNow, again.outgoing().hops(), again.xml());
-            engine.counters().resent.increment();
-            carriedAck = true;
-        }
-        if (carriedAck) {
-            lastDataEndOffset = writer.bytes();
-        }
-        if (!turn.fresh.isEmpty()) {
-            carriedAck |= writeFresh(turn.fresh, ackNow);
-        }
-        if (turn.ack && !carriedAck) {
-            writer.ack(ackNow);
-            carriedAck = true;
-        }
-        if (carriedAck) {
-            lastAckSent = ackNow;
-        }
-        if (turn.heartbeat) {
-            writer.heartbeat();
-        }
-        if (turn.probe || !turn.timeReplies.isEmpty()) {
-            // Time frames go out alone, stamped just before they leave: queued bytes ahead of
-            // them would count as path delay.
-            writer.flush();
-            for (long[] request : turn.timeReplies) {
-                writer.timeReply(request[0], request[1], engine.kernel().clock().epochNanos());
-                writer.flush();
-            }
-            if (turn.probe) {
-                writer.timeRequest(engine.kernel().clock().epochNanos());
-            }
-        }
-        if (turn.bye != null) {
-            writer.bye(turn.bye.code(), turn.bye.text());
-        }
-        writer.flush();
-        bytesWritten = writer.bytes();
-        lastWriteNs = engine.nowNs();
-    }
-
-    /** Numbers and writes new messages (encoded by their senders); reports those that cannot go. */
-    private boolean writeFresh(List<Outgoing> fresh, long ackNow) throws IOException {
-        var encoded = new ArrayList<Outgoing>(fresh.size());
-        var xml = new ArrayList<byte[]>(fresh.size());
-        for (Outgoing outgoing : fresh) {
-            int frameBytes = outgoing.xml().length + Frame.DATA_OVERHEAD_BYTES;
-            if (frameBytes <= peerMaxFrameBytes) {
-                encoded.add(outgoing);
-                xml.add(outgoing.xml());
-            } else {
-                // Queued before this peer said its limit, which is below this node's own.
-                engine.lost(outgoing.message(), "its frame of " + frameBytes + " bytes is over the "
-                        + peerMaxFrameBytes + " bytes node '" + peer.nodeId + "' accepts");
-            }
-        }
-        List<InFlight> assigned = peer.assign(this, encoded, xml);
-        if (assigned == null) {
-            return false;
-        }
-        for (InFlight entry : assigned) {
-            writer.data(entry.seq(), ackNow, entry.outgoing().hops(), entry.xml());
-        }
-        lastDataEndOffset = writer.bytes();
-        engine.counters().sent.add(assigned.size());
-        return !assigned.isEmpty();
-    }
-
-    /**
-     * Writes one message frame on the calling thread, which owns the output meanwhile (see
-     * {@link Peer#enqueue}).
-     */
-    void writeDirect(InFlight entry) throws IOException {
-        long ackNow = peer.inboundCount();
-        writer.data(entry.seq(), ackNow, entry.outgoing().hops(), entry.xml());
-        writer.flush();
-        lastDataEndOffset = writer.bytes();
-        bytesWritten = lastDataEndOffset;
-        lastAckSent = ackNow;
-        lastWriteNs = engine.nowNs();
-        engine.counters().sent.increment();
-    }
-
-    int peerMaxFrameBytes() {
-        return peerMaxFrameBytes;
-    }
-
-    /**
-     * Whether a sender may write {@code frameBytes} more directly: the bytes the peer may not have
-     * read yet (everything after the last message frame it acknowledged, control frames included)
-     * plus these stay within a quarter of the socket's send buffer, so the write cannot block
-     * even on a peer that stopped reading.
-     */
-    boolean fitsDirectWrite(int frameBytes) {
-        return bytesWritten - readByPeerOffset + frameBytes <= directBudgetBytes;
-    }
-
-    /**
-     * Every message frame written so far is acknowledged (peer's lock held): the peer has read
-     * the stream up to the last of them. A frame still being written ends later, so this errs
-     * on the safe side.
-     */
-    void allDataAcknowledged() {
-        readByPeerOffset = Math.max(readByPeerOffset, lastDataEndOffset);
-    }
-
-    // ---------------------------------------------------------------- writer requests (under peer.lock)
-
-    long heartbeatDueNs() {
-        return lastWriteNs + engine.config().heartbeatIntervalNs();
-    }
+    // ---------------------------------------------------------------- writer requests (under link.lock)
 
     private void requestTimeReply(long t1, long t2) {
-        peer.lock.lock();
+        link.lock.lock();
         try {
             requests.timeReply(t1, t2);
-            peer.work.signal();
+            link.work.signal();
         } finally {
-            peer.lock.unlock();
+            link.lock.unlock();
         }
     }
 
@@ -496,7 +364,7 @@ final class Connection implements Runnable {
     }
 
     private void request(Runnable flag) {
-        Peer owner = peer;
+        Link owner = link;
         owner.lock.lock();
         try {
             flag.run();
@@ -506,16 +374,11 @@ final class Connection implements Runnable {
         }
     }
 
-    /** Whether acknowledgements are owed: messages delivered since the last one sent. */
-    boolean owesAck() {
-        return peer.inboundCount() > lastAckSent;
-    }
-
     // ---------------------------------------------------------------- identity and closing
 
     /** The node that dialed this connection. */
     String initiatorId() {
-        return dialer != null ? engine.nodeId() : hello.nodeId();
+        return dialer != null ? context.nodeId() : hello.nodeId();
     }
 
     /**
@@ -523,7 +386,7 @@ final class Connection implements Runnable {
      * two dialed by the same node, the newer (the older is likely dead, which is why it redialed).
      */
     boolean isPreferredOver(Connection other) {
-        String lower = engine.nodeId().compareTo(peer.nodeId) < 0 ? engine.nodeId() : peer.nodeId;
+        String lower = context.nodeId().compareTo(peer.nodeId) < 0 ? context.nodeId() : peer.nodeId;
         boolean mine = initiatorId().equals(lower);
         boolean theirs = other.initiatorId().equals(lower);
         return mine || !theirs;
@@ -535,6 +398,36 @@ final class Connection implements Runnable {
 
     Peer peer() {
         return peer;
+    }
+
+    Link link() {
+        return link;
+    }
+
+    /** The output side (null before the handshake wrote its frames). */
+    ConnectionOutput output() {
+        return output;
+    }
+
+    int lane() {
+        return lane;
+    }
+
+    /** The peer's id, and the lane when there are several: for thread names. */
+    private String laneName() {
+        return context.lanes().size() == 1 ? peer.nodeId : peer.nodeId + "-lane" + lane;
+    }
+
+    /** Hands a message from the peer, its origin set, to the kernel (the reader thread). */
+    private void deliverLocally(Message message) {
+        try {
+            context.kernel().send(message);
+            context.counters().received.increment();
+        } catch (RuntimeException e) {
+            context.counters().undeliverable.increment();
+            log.warn("node {}: the kernel refused message {} to '{}' from the network: {}", context.nodeId(),
+                    message.messageId(), message.profile(), e.toString());
+        }
     }
 
     String remote() {
@@ -562,7 +455,7 @@ final class Connection implements Runnable {
             reason = abortReason;
             detail = abortDetail;
         }
-        Peer owner = peer;
+        Link owner = link;
         boolean wasActive = false;
         boolean sayBye = reason != CloseReason.PEER_CLOSED && !aborted;
         if (owner != null) {
@@ -577,7 +470,7 @@ final class Connection implements Runnable {
             }
             wasActive = owner.deactivate(this);
         }
-        engine.connectionClosed(this, reason, detail, wasActive);
+        events.connectionClosed(this, reason, detail, wasActive);
         Thread writing = writerThread;
         Thread current = Thread.currentThread();
         if (writing != null && writing != current) {
@@ -615,7 +508,7 @@ final class Connection implements Runnable {
         } catch (IOException e) {
             // Closing anyway.
         }
-        engine.connectionEnded(this, wasActive, reason);
+        events.connectionEnded(this, wasActive, reason);
     }
 
     private volatile boolean aborted;
@@ -637,7 +530,7 @@ final class Connection implements Runnable {
             aborted = true;
         }
         closing = true;
-        Thread.ofPlatform().daemon().name("etherware-net-" + engine.nodeId() + "-abort").start(() -> {
+        Thread.ofPlatform().daemon().name("etherware-net-" + context.nodeId() + "-abort").start(() -> {
             try {
                 socket.close();
             } catch (IOException e) {
@@ -652,12 +545,12 @@ final class Connection implements Runnable {
      * with unread input would reset the connection and could destroy the BYE before it is read.
      */
     private void drainInput() {
-        long deadlineNs = engine.nowNs() + TimeUnit.MILLISECONDS.toNanos(CLOSE_GRACE_MS);
+        long deadlineNs = NetworkContext.nowNs() + TimeUnit.MILLISECONDS.toNanos(CLOSE_GRACE_MS);
         try {
             InputStream input = socket.getInputStream();
             byte[] sink = new byte[4096];
             while (true) {
-                long leftMs = TimeUnit.NANOSECONDS.toMillis(deadlineNs - engine.nowNs());
+                long leftMs = TimeUnit.NANOSECONDS.toMillis(deadlineNs - NetworkContext.nowNs());
                 if (leftMs <= 0) {
                     return;
                 }
@@ -673,7 +566,7 @@ final class Connection implements Runnable {
 
     @Override
     public String toString() {
-        return "connection " + engine.nodeId() + "<->" + (hello != null ? hello.nodeId() : "?") + " (" + remote
+        return "connection " + context.nodeId() + "<->" + (hello != null ? hello.nodeId() : "?") + " (" + remote
                 + (dialer != null ? ", dialed" : ", accepted") + ")";
     }
 }

@@ -10,7 +10,8 @@ import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
 /**
- * Keeps one configured peer address connected: dials when no connection to the node there is up,
+ * Keeps one lane to a configured peer address connected: dials when no connection of its lane to
+ * the node there is up,
  * and redials with exponential backoff and jitter after a refusal or a loss.
  *
  * <p>Thread-safety: {@link #maybeDial} runs on the control thread; the attempt runs on its own
@@ -21,6 +22,8 @@ final class Dialer {
     private static final Logger log = LoggerFactory.getLogger(Dialer.class);
 
     final InetSocketAddress address;
+    /** The lane its connections carry. */
+    final int lane;
     private final Engine engine;
     private final Backoff backoff;
     /** The node found at the address by the last handshake, or null before one. */
@@ -30,9 +33,10 @@ final class Dialer {
     private long nextAttemptNs;
     private int failuresInARow;
 
-    Dialer(Engine engine, InetSocketAddress address) {
+    Dialer(Engine engine, InetSocketAddress address, int lane) {
         this.engine = engine;
         this.address = address;
+        this.lane = lane;
         this.backoff = new Backoff(engine.config().reconnectInitialBackoffNs(), engine.config().reconnectMaxBackoffNs(),
                 engine.config().reconnectJitter(), ThreadLocalRandom.current());
         this.nextAttemptNs = engine.nowNs();
@@ -41,12 +45,12 @@ final class Dialer {
     /** Starts an attempt if none runs, the node there is not connected and the backoff has passed. */
     void maybeDial(long nowNs) {
         synchronized (this) {
-            if (attempting || nowNs - nextAttemptNs < 0 || (nodeId != null && engine.isConnected(nodeId))) {
+            if (attempting || nowNs - nextAttemptNs < 0 || (nodeId != null && engine.isConnected(nodeId, lane))) {
                 return;
             }
             attempting = true;
         }
-        var attempt = new ConnectionThread(this::attempt, "etherware-net-" + engine.nodeId() + "-dial-" + address);
+        var attempt = new ConnectionThread(this::attempt, "etherware-net-" + engine.nodeId() + "-dial-" + address + "-lane" + lane);
         attempt.start();
     }
 

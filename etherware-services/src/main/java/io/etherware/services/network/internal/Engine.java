@@ -1,6 +1,5 @@
 package io.etherware.services.network.internal;
 
-import io.etherware.core.codec.MessageCodec;
 import io.etherware.core.kernel.Kernel;
 import io.etherware.core.kernel.ProfileResolutionException;
 import io.etherware.core.kernel.RemoteRoute;
@@ -30,7 +29,6 @@ import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.ConcurrentLinkedQueue;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.ScheduledThreadPoolExecutor;
-import java.util.concurrent.ThreadLocalRandom;
 import java.util.concurrent.TimeUnit;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -68,19 +66,19 @@ public final class Engine {
     private final ConcurrentLinkedQueue<Profile> toReconcile = new ConcurrentLinkedQueue<>();
     private final ScheduledThreadPoolExecutor control;
     private final Object stateChanged = new Object();
-    private final Losses losses;
+    private final NetworkContext context;
+    private final ConnectionEvents events = new Events();
     private ServerSocket server;
     private Thread acceptor;
     private volatile boolean closed;
 
     private final Announcer announcer;
-    private final IoThreads ioThreads;
 
     public Engine(Kernel kernel, NetworkConfig config) {
         this.kernel = kernel;
         this.config = config;
         this.nodeId = kernel.nodeId();
-        this.incarnation = nonZero(new SecureRandom().nextLong());
+        this.incarnation = NetworkContext.nonZero(new SecureRandom().nextLong());
         this.networkTime = new NetworkTime(kernel.clock(), config.timeWindowSize(), NetworkTime.DEFAULT_MIN_DRIFT_SPAN);
         this.routes = new RouteTable(kernel.registry(), config.announcePolicy(), counters.announcementsRefused);
         this.control = new ScheduledThreadPoolExecutor(1, task -> {
@@ -89,18 +87,20 @@ public final class Engine {
             return thread;
         });
         this.announcer = new Announcer(kernel, peers.values(), toReconcile);
-        this.losses = new Losses(kernel, counters);
-        this.ioThreads = IoThreads.of(kernel, config);
+        var lanes = new ArrayList<IoThreads>();
+        for (int lane = 0; lane < config.lanes(); lane++) {
+            lanes.add(IoThreads.of(kernel, config, lane));
+        }
+        this.context = new NetworkContext(nodeId, incarnation, kernel, config, counters, networkTime,
+                new Losses(kernel, counters), lanes, control);
     }
 
-    /** The policy the reader and writer threads ask for. */
-    public ThreadPolicy ioThreadPolicy() {
-        return ioThreads.policy();
-    }
-
-    /** See {@link IoThreads#configureCurrent}. */
-    void configureIoThread() {
-        ioThreads.configureCurrent();
+    /** The policy the reader and writer threads of {@code lane} ask for. */
+    public ThreadPolicy ioThreadPolicy(int lane) {
+        if (lane < 0 || lane >= config.lanes()) {
+            throw new IllegalArgumentException("lane=" + lane + " must be in 0.." + (config.lanes() - 1));
+        }
+        return context.lanes().get(lane).policy();
     }
 
     // ---------------------------------------------------------------- lifecycle
@@ -129,7 +129,7 @@ public final class Engine {
         acceptor.setDaemon(true);
         acceptor.start();
         for (InetSocketAddress address : config.peers()) {
-            dialers.add(new Dialer(this, address));
+            addDialers(address);
         }
         control.scheduleWithFixedDelay(this::tick, 0, TICK_MS, TimeUnit.MILLISECONDS);
         log.info("node {}: network messenger listening on {}, dialing {}", nodeId, localAddress(), config.peers());
@@ -140,7 +140,14 @@ public final class Engine {
         if (closed) {
             throw new IllegalStateException("the network messenger of node '" + nodeId + "' is closed");
         }
-        dialers.add(new Dialer(this, address));
+        addDialers(address);
+    }
+
+    /** One dialer per lane: each keeps its lane's connection to the node at {@code address}. */
+    private void addDialers(InetSocketAddress address) {
+        for (int lane = 0; lane < config.lanes(); lane++) {
+            dialers.add(new Dialer(this, address, lane));
+        }
     }
 
     public InetSocketAddress localAddress() {
@@ -177,7 +184,8 @@ public final class Engine {
         }
         for (Peer peer : peers.values()) {
             for (Outgoing lost : peer.close()) {
-                lost(lost.message(), "the network messenger of node '" + nodeId + "' closed before sending it");
+                context.losses().lost(lost.message(), "the network messenger of node '" + nodeId
+                        + "' closed before sending it");
             }
             routes.forget(peer);
         }
@@ -193,9 +201,11 @@ public final class Engine {
 
     private boolean hasBacklog() {
         for (Peer peer : peers.values()) {
-            int[] backlog = peer.backlog();
-            if (peer.isConnected() && backlog[0] + backlog[1] > 0) {
-                return true;
+            for (Link link : peer.links()) {
+                int[] backlog = link.backlog();
+                if (link.isConnected() && backlog[0] + backlog[1] > 0) {
+                    return true;
+                }
             }
         }
         return false;
@@ -237,7 +247,7 @@ public final class Engine {
             }
             return null;
         }
-        var connection = new Connection(this, socket, dialer);
+        var connection = new Connection(context, events, socket, dialer);
         connections.add(connection);
         pending.addLast(connection);
         while (pending.size() > config.maxPendingHandshakes()) {
@@ -260,34 +270,99 @@ public final class Engine {
         return connection;
     }
 
-    /** The connection finished its handshake (either way). */
-    void handshakeEnded(Connection connection) {
-        pending.remove(connection);
-    }
-
     // ---------------------------------------------------------------- connections
 
-    Peer peer(String peerId) {
-        return peers.computeIfAbsent(peerId, id -> new Peer(id, this));
+    private Peer peer(String peerId) {
+        return peers.computeIfAbsent(peerId, id -> new Peer(id, context));
     }
 
+    /** Whether every lane to {@code peerId} is connected. */
     boolean isConnected(String peerId) {
         Peer peer = peers.get(peerId);
         return peer != null && peer.isConnected();
     }
 
-    /** After the handshake: make the connection the peer's, or close it as a duplicate. */
-    boolean activate(Connection connection, Frame.Hello hello, Frame.Resume theirs, long helloArrivedEpochNs) {
+    /** Whether {@code lane} to {@code peerId} is connected. */
+    boolean isConnected(String peerId, int lane) {
+        Peer peer = peers.get(peerId);
+        return peer != null && peer.link(lane).isConnected();
+    }
+
+    /** What the connections tell the messenger. */
+    private final class Events implements ConnectionEvents {
+        @Override
+        public Peer peer(String nodeId) {
+            return Engine.this.peer(nodeId);
+        }
+
+        @Override
+        public void handshakeEnded(Connection connection) {
+            pending.remove(connection);
+        }
+
+        @Override
+        public boolean activate(Connection connection, Frame.Hello hello, Frame.Resume theirs,
+                                long helloArrivedEpochNs) {
+            return Engine.this.activate(connection, hello, theirs, helloArrivedEpochNs);
+        }
+
+        @Override
+        public void stateChanged() {
+            signalStateChanged();
+        }
+
+        @Override
+        public void announced(Peer peer, Frame.Announce announce) {
+            peer.onAnnounce(announce.version(), () -> routes.announce(peer, announce.profiles()));
+            signalStateChanged();
+        }
+
+        @Override
+        public void peerShutDown(Peer peer) {
+            log.info("node {}: node '{}' is shutting down: unrouting its profiles", nodeId, peer.nodeId);
+            routes.forget(peer);
+            signalStateChanged();
+        }
+
+        @Override
+        public void connectionClosed(Connection connection, CloseReason reason, String detail, boolean wasActive) {
+            counters.closed(reason);
+            if (reason.isBadInput()) {
+                log.warn("node {}: closed {} for bad input: {}: {}", nodeId, connection, reason, detail);
+            } else if (reason == CloseReason.SHUTDOWN || !wasActive) {
+                log.debug("node {}: closed {}: {}: {}", nodeId, connection, reason, detail);
+            } else {
+                log.info("node {}: closed {}: {}: {}", nodeId, connection, reason, detail);
+            }
+        }
+
+        @Override
+        public void connectionEnded(Connection connection, boolean wasActive, CloseReason reason) {
+            connections.remove(connection);
+            pending.remove(connection);
+            if (connection.dialer() != null) {
+                connection.dialer().ended(connection.isActivated(), reason);
+            }
+            if (wasActive) {
+                signalStateChanged();
+            }
+        }
+    }
+
+    /** After the handshake: make the connection its lane's, or close it as a duplicate. */
+    private boolean activate(Connection connection, Frame.Hello hello, Frame.Resume theirs, long helloArrivedEpochNs) {
         Peer peer = connection.peer();
-        Peer.Activation activation = peer.activate(connection, hello, theirs);
+        Link link = connection.link();
+        Peer.Activation outcome = peer.activate(connection, hello, theirs, announcer.body());
+        Link.Activation activation = outcome.link();
         if (!activation.accepted()) {
-            reportLost(activation.lost(), "the streams with node '" + peer.nodeId
+            context.losses().reportLost(activation.lost(), "the streams with node '" + peer.nodeId
                     + "' disagreed; its fate is unknown");
             if (activation.refusal() != null) {
                 connection.close(CloseReason.SEQUENCE_ERROR, activation.refusal());
             } else if (closed) {
                 connection.close(CloseReason.SHUTDOWN, "node '" + nodeId + "' is closing its network messenger");
-            } else if (peer.isConnected()) {
+            } else if (link.isConnected()) {
                 connection.close(CloseReason.DUPLICATE, "node '" + peer.nodeId + "' is connected already;"
                         + " keeping the connection dialed by '" + lowerId(peer.nodeId) + "'");
             } else {
@@ -297,20 +372,22 @@ public final class Engine {
             return false;
         }
         counters.opened.increment();
-        if (activation.restarted()) {
+        if (outcome.restarted()) {
             log.info("node {}: node '{}' restarted (new incarnation)", nodeId, peer.nodeId);
             networkTime.forget(peer.nodeId);
         }
-        networkTime.onHandshake(peer.nodeId, hello.epochNs(), helloArrivedEpochNs);
+        if (connection.lane() == 0) {
+            networkTime.onHandshake(peer.nodeId, hello.epochNs(), helloArrivedEpochNs);
+        }
         if (connection.dialer() != null) {
             connection.dialer().activated(peer.nodeId);
         }
-        log.info("node {}: connected to node '{}' ({})", nodeId, peer.nodeId, connection);
+        log.info("node {}: connected to node '{}', lane {} ({})", nodeId, peer.nodeId, connection.lane(), connection);
         if (activation.loser() != null) {
             activation.loser().close(CloseReason.DUPLICATE, "replaced by the connection dialed by '"
                     + connection.initiatorId() + "'");
         }
-        reportLost(activation.lost(), "node '" + peer.nodeId + "' restarted before acknowledging it;"
+        context.losses().reportLost(activation.lost(), "node '" + peer.nodeId + "' restarted before acknowledging it;"
                 + " it may or may not have been handled");
         signalStateChanged();
         return true;
@@ -318,75 +395,6 @@ public final class Engine {
 
     private String lowerId(String peerId) {
         return nodeId.compareTo(peerId) < 0 ? nodeId : peerId;
-    }
-
-    /** Counts and logs the end of a connection (the connection's own thread or a closer). */
-    void connectionClosed(Connection connection, CloseReason reason, String detail, boolean wasActive) {
-        counters.closed(reason);
-        if (reason.isBadInput()) {
-            log.warn("node {}: closed {} for bad input: {}: {}", nodeId, connection, reason, detail);
-        } else if (reason == CloseReason.SHUTDOWN || !wasActive) {
-            log.debug("node {}: closed {}: {}: {}", nodeId, connection, reason, detail);
-        } else {
-            log.info("node {}: closed {}: {}: {}", nodeId, connection, reason, detail);
-        }
-    }
-
-    /** The peer said BYE SHUTDOWN on its connection: its profiles are unrouted at once, not after the grace. */
-    void peerShutDown(Peer peer) {
-        log.info("node {}: node '{}' is shutting down: unrouting its profiles", nodeId, peer.nodeId);
-        routes.forget(peer);
-        signalStateChanged();
-    }
-
-    /** Closes a connection off the calling thread (a sender must not wait for the close). */
-    void closeLater(Connection connection, CloseReason reason, String detail) {
-        try {
-            control.execute(() -> connection.close(reason, detail));
-        } catch (java.util.concurrent.RejectedExecutionException e) {
-            // The messenger is closing and closes every connection itself.
-        }
-    }
-
-    /** The connection's socket is closed. */
-    void connectionEnded(Connection connection, boolean wasActive, CloseReason reason) {
-        connections.remove(connection);
-        pending.remove(connection);
-        if (connection.dialer() != null) {
-            connection.dialer().ended(connection.isActivated(), reason);
-        }
-        if (wasActive) {
-            signalStateChanged();
-        }
-    }
-
-    // ---------------------------------------------------------------- messages
-
-    /** Hands a message from a peer, its origin set, to the kernel (the connection's reader thread). */
-    void deliverLocally(Message message) {
-        try {
-            kernel.send(message);
-            counters.received.increment();
-        } catch (RuntimeException e) {
-            counters.undeliverable.increment();
-            log.warn("node {}: the kernel refused message {} to '{}' from the network: {}", nodeId,
-                    message.messageId(), message.profile(), e.toString());
-        }
-    }
-
-    /** See {@link Losses#lost}. */
-    void lost(Message message, String reason) {
-        losses.lost(message, reason);
-    }
-
-    /** See {@link Losses#reportLost}. */
-    void reportLost(List<InFlight> entries, String reason) {
-        losses.reportLost(entries, reason);
-    }
-
-    /** See {@link Losses#dropped}. */
-    void dropped(Message message, String peerId, String reason) {
-        losses.dropped(message, peerId, reason);
     }
 
     /** A route to whatever profile a peer hosts, e.g. for a migration to that node. */
@@ -413,10 +421,6 @@ public final class Engine {
         };
     }
 
-    byte[] announceBody() {
-        return announcer.body();
-    }
-
     // ---------------------------------------------------------------- the control thread
 
     private void tick() {
@@ -426,37 +430,12 @@ public final class Engine {
                 dialer.maybeDial(nowNs);
             }
             for (Peer peer : peers.values()) {
-                Connection active = peer.active();
-                if (active != null) {
-                    long stalledNs = peer.unreadForNs(nowNs);
-                    if (stalledNs > config.heartbeatTimeoutNs()) {
-                        active.abort(CloseReason.NOT_READING, "node '" + peer.nodeId + "' acknowledged nothing of what"
-                                + " was written to it for " + TimeUnit.NANOSECONDS.toMillis(stalledNs) + " ms");
-                        continue;
-                    }
-                    if (active.owesAck()) {
-                        active.requestAck();
-                    }
-                    if (nowNs - active.nextProbeNs >= 0) {
-                        active.requestProbe();
-                        active.probesSent++;
-                        active.nextProbeNs = nowNs + (active.probesSent < config.timeProbeBurst() ? BURST_SPACING_NS
-                                : config.timeProbeIntervalNs());
-                    }
-                } else {
-                    List<Outgoing> lost = peer.expireIfDown(nowNs);
-                    if (lost != null) {
-                        log.warn("node {}: node '{}' has been unreachable for over {} ms: unrouting its profiles and"
-                                + " reporting {} waiting messages as undeliverable", nodeId, peer.nodeId,
-                                TimeUnit.NANOSECONDS.toMillis(config.peerDownGraceNs()), lost.size());
-                        routes.forget(peer);
-                        peers.remove(peer.nodeId, peer);
-                        for (Outgoing each : lost) {
-                            lost(each.message(), "node '" + peer.nodeId + "' has been unreachable for over "
-                                    + TimeUnit.NANOSECONDS.toMillis(config.peerDownGraceNs()) + " ms");
-                        }
-                        signalStateChanged();
-                    }
+                boolean up = false;
+                for (Link link : peer.links()) {
+                    up |= checkLink(link, nowNs);
+                }
+                if (!up) {
+                    expireIfDown(peer, nowNs);
                 }
             }
             Profile profile;
@@ -466,6 +445,50 @@ public final class Engine {
         } catch (RuntimeException e) {
             log.error("node {}: network control tick failed; continuing", nodeId, e);
         }
+    }
+
+    /**
+     * A connected lane's periodic duties: closes it if the peer reads nothing, asks for owed
+     * acknowledgements, and (lane 0) time probes. Returns whether the lane is connected.
+     */
+    private boolean checkLink(Link link, long nowNs) {
+        Connection active = link.active();
+        if (active == null) {
+            return false;
+        }
+        long stalledNs = link.unreadForNs(nowNs);
+        if (stalledNs > config.heartbeatTimeoutNs()) {
+            active.abort(CloseReason.NOT_READING, "node '" + link.nodeId + "' acknowledged nothing of what was"
+                    + " written to it on lane " + link.lane + " for " + TimeUnit.NANOSECONDS.toMillis(stalledNs) + " ms");
+            return true;
+        }
+        if (active.output().owesAck()) {
+            active.requestAck();
+        }
+        if (link.lane == 0 && nowNs - active.nextProbeNs >= 0) {
+            active.requestProbe();
+            active.probesSent++;
+            active.nextProbeNs = nowNs + (active.probesSent < config.timeProbeBurst() ? BURST_SPACING_NS
+                    : config.timeProbeIntervalNs());
+        }
+        return true;
+    }
+
+    private void expireIfDown(Peer peer, long nowNs) {
+        List<Outgoing> lost = peer.expireIfDown(nowNs);
+        if (lost == null) {
+            return;
+        }
+        log.warn("node {}: node '{}' has been unreachable for over {} ms: unrouting its profiles and reporting {}"
+                + " waiting messages as undeliverable", nodeId, peer.nodeId,
+                TimeUnit.NANOSECONDS.toMillis(config.peerDownGraceNs()), lost.size());
+        routes.forget(peer);
+        peers.remove(peer.nodeId, peer);
+        for (Outgoing each : lost) {
+            context.losses().lost(each.message(), "node '" + peer.nodeId + "' has been unreachable for over "
+                    + TimeUnit.NANOSECONDS.toMillis(config.peerDownGraceNs()) + " ms");
+        }
+        signalStateChanged();
     }
 
     // ---------------------------------------------------------------- status
@@ -495,9 +518,9 @@ public final class Engine {
     }
 
     private PeerStatus status(Peer peer) {
-        Connection active = peer.active();
+        Connection primary = peer.primary();
         int[] backlog = peer.backlog();
-        return new PeerStatus(peer.nodeId, active != null, Optional.ofNullable(active).map(Connection::remote),
+        return new PeerStatus(peer.nodeId, peer.isConnected(), Optional.ofNullable(primary).map(Connection::remote),
                 backlog[0], backlog[1], routes.hostedBy(peer.nodeId), networkTime.peer(peer.nodeId));
     }
 
@@ -545,44 +568,16 @@ public final class Engine {
         return nodeId;
     }
 
-    long incarnation() {
-        return incarnation;
-    }
-
-    long newStreamId() {
-        return nonZero(ThreadLocalRandom.current().nextLong());
-    }
-
-    private static long nonZero(long value) {
-        return value == 0 ? 1 : value;
-    }
-
     long nowNs() {
-        return System.nanoTime();
-    }
-
-    Kernel kernel() {
-        return kernel;
+        return NetworkContext.nowNs();
     }
 
     NetworkConfig config() {
         return config;
     }
 
-    MessageCodec codec() {
-        return config.codec();
-    }
-
     public NetworkTime networkTime() {
         return networkTime;
-    }
-
-    Counters counters() {
-        return counters;
-    }
-
-    RouteTable routes() {
-        return routes;
     }
 
     private static void join(Thread thread) {

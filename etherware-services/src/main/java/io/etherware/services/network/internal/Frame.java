@@ -4,7 +4,7 @@ import io.etherware.core.message.Profile;
 import java.util.List;
 
 /**
- * The frames of the node-to-node protocol, version 1 ({@code NETWORK-PROTOCOL.md}): each is
+ * The frames of the node-to-node protocol, version 2 ({@code NETWORK-PROTOCOL.md}): each is
  * a 4-byte big-endian length, a type byte and a body.
  *
  * <p>Immutable values.
@@ -12,7 +12,9 @@ import java.util.List;
 sealed interface Frame {
 
     int MAGIC = 0x45575254; // "EWRT"
-    int VERSION = 1;
+    int VERSION = 2;
+    /** Most lanes (connections per pair of nodes) a HELLO may state. */
+    int MAX_LANES = 8;
 
     byte HELLO = 1;
     byte RESUME = 2;
@@ -29,14 +31,21 @@ sealed interface Frame {
     int MAX_HANDSHAKE_FRAME_BYTES = 1024;
     /**
      * Smallest HELLO: type, magic, version, a node id of one byte (with its length), incarnation,
-     * clock, maxFrameBytes.
+     * clock, maxFrameBytes, lanes, lane.
      */
-    int MIN_HELLO_FRAME_BYTES = 1 + 4 + 2 + 2 + 1 + 8 + 8 + 4;
+    int MIN_HELLO_FRAME_BYTES = 1 + 4 + 2 + 2 + 1 + 8 + 8 + 4 + 1 + 1;
     /** Type byte plus DATA's seq, ack and hops. */
     int DATA_OVERHEAD_BYTES = 1 + 8 + 8 + 1;
 
-    /** Identity: first frame each way. */
-    record Hello(int version, String nodeId, long incarnation, long epochNs, int maxFrameBytes) implements Frame {
+    /**
+     * Identity: first frame each way.
+     *
+     * @param lanes how many connections per pair of nodes the sender runs (both must agree)
+     * @param lane  from the dialing side, the lane this connection carries (0: HIGH and MIDDLE
+     *              messages, 1: LOW and NONE); the accepting side writes 0 and is not read
+     */
+    record Hello(int version, String nodeId, long incarnation, long epochNs, int maxFrameBytes, int lanes, int lane)
+            implements Frame {
     }
 
     /**

@@ -87,8 +87,14 @@ final class FrameReader {
             throw new ProtocolException(CloseReason.BAD_HANDSHAKE, "the peer's maxFrameBytes=" + peerMaxFrameBytes
                     + " is below " + Frame.MAX_HANDSHAKE_FRAME_BYTES);
         }
+        int lanes = Byte.toUnsignedInt(body.get());
+        int lane = Byte.toUnsignedInt(body.get());
+        if (lanes < 1 || lanes > Frame.MAX_LANES || lane >= lanes) {
+            throw new ProtocolException(CloseReason.BAD_HANDSHAKE, "the peer's HELLO states lane " + lane + " of "
+                    + lanes + " lanes: lanes must be in 1.." + Frame.MAX_LANES + " and the lane below them");
+        }
         requireEnd(body, "HELLO");
-        return new Frame.Hello(version, nodeId, incarnation, epochNs, peerMaxFrameBytes);
+        return new Frame.Hello(version, nodeId, incarnation, epochNs, peerMaxFrameBytes, lanes, lane);
     }
 
     /**

@@ -28,13 +28,15 @@ final class FrameWriter {
 
     void hello(Frame.Hello hello) throws IOException {
         byte[] nodeId = utf8(hello.nodeId());
-        begin(Frame.HELLO, 4 + 2 + 2 + nodeId.length + 8 + 8 + 4);
+        begin(Frame.HELLO, 4 + 2 + 2 + nodeId.length + 8 + 8 + 4 + 1 + 1);
         out.writeInt(Frame.MAGIC);
         out.writeShort(hello.version());
         string(nodeId);
         out.writeLong(hello.incarnation());
         out.writeLong(hello.epochNs());
         out.writeInt(hello.maxFrameBytes());
+        out.writeByte(hello.lanes());
+        out.writeByte(hello.lane());
     }
 
     void resume(Frame.Resume resume) throws IOException {

@@ -5,27 +5,45 @@ import io.etherware.core.kernel.Kernel;
 import io.etherware.rt.platform.CpuSet;
 import io.etherware.rt.platform.Platform;
 import io.etherware.rt.platform.ThreadPolicy;
+import io.etherware.rt.scheduling.DispatcherSpec;
 import io.etherware.rt.scheduling.RealtimeScheduler;
+import io.etherware.rt.scheduling.ThreadSchedulingRule;
 import io.etherware.services.network.NetworkConfig;
 
 /**
- * The OS policy and CPUs of the connections' reader and writer threads: configured, or by default
- * one real-time level above the highest dispatcher of the node's {@link RealtimeScheduler} (a
- * thread that carries HIGH messages must not wait for LOW work; DESIGN decision 13), ordinary
- * threads with another scheduler.
+ * The OS policy and CPUs of one lane's reader and writer threads: configured, or by default, with
+ * the node's {@link RealtimeScheduler}, lane 0 (HIGH and MIDDLE messages) one real-time level above
+ * its highest dispatcher and lane 1 (LOW and NONE) one level above its lowest real-time one, so a
+ * thread never carries messages at a priority below work less critical than theirs, nor above work
+ * more critical (DESIGN decision 13); ordinary threads with another scheduler.
  *
  * @param policy what the threads ask for
  * @param cpus   where they run
  */
 record IoThreads(ThreadPolicy policy, CpuSet cpus) {
 
-    static IoThreads of(Kernel kernel, NetworkConfig config) {
-        ThreadPolicy policy = config.threadPolicy();
+    static IoThreads of(Kernel kernel, NetworkConfig config, int lane) {
+        ThreadPolicy policy = lane == 0 ? config.threadPolicy() : config.bulkThreadPolicy();
         if (policy == null) {
-            policy = kernel instanceof EtherwareNode node && node.scheduler() instanceof RealtimeScheduler realtime
-                    ? realtime.config().threadSchedulingRule().above(1) : ThreadPolicy.NON_REALTIME;
+            ThreadSchedulingRule rule = kernel instanceof EtherwareNode node
+                    && node.scheduler() instanceof RealtimeScheduler realtime
+                    ? realtime.config().threadSchedulingRule() : null;
+            policy = rule == null ? ThreadPolicy.NON_REALTIME : lane == 0 ? rule.above(1) : aboveLowest(rule);
         }
         return new IoThreads(policy, config.cpus());
+    }
+
+    /** One level above the rule's lowest real-time dispatcher, or ordinary if none is real-time. */
+    private static ThreadPolicy aboveLowest(ThreadSchedulingRule rule) {
+        ThreadPolicy lowest = null;
+        for (DispatcherSpec spec : rule.dispatchers()) {
+            ThreadPolicy policy = spec.policy();
+            if (policy.isRealtime() && (lowest == null || policy.priority() < lowest.priority())) {
+                lowest = policy;
+            }
+        }
+        return lowest == null ? ThreadPolicy.NON_REALTIME
+                : new ThreadPolicy(lowest.policy(), Math.min(lowest.priority() + 1, ThreadSchedulingRule.MAX_REALTIME_PRIORITY));
     }
 
     /**

@@ -39,7 +39,7 @@ class FramesTest {
         byte[] xml = "<message/>".getBytes(StandardCharsets.UTF_8);
         List<Profile> profiles = List.of(Profile.of("etherware.node", "id", "b"), Profile.parse("ctrl[car=1]"));
         FrameReader reader = readerOf(writer -> {
-            writer.hello(new Frame.Hello(1, "node-1", 42, 1_700_000_000_000_000_000L, 1 << 20));
+            writer.hello(new Frame.Hello(Frame.VERSION, "node-1", 42, 1_700_000_000_000_000_000L, 1 << 20, 2, 1));
             writer.resume(new Frame.Resume(7, 8, 9));
             writer.data(3, 2, 1, xml);
             writer.ack(11);
@@ -50,7 +50,7 @@ class FramesTest {
             writer.reject(3, "bad");
             writer.bye(CloseReason.DUPLICATE.code(), "keeping the other, é");
         });
-        assertEquals(new Frame.Hello(1, "node-1", 42, 1_700_000_000_000_000_000L, 1 << 20), reader.readHello());
+        assertEquals(new Frame.Hello(Frame.VERSION, "node-1", 42, 1_700_000_000_000_000_000L, 1 << 20, 2, 1), reader.readHello());
         assertEquals(new Frame.Resume(7, 8, 9), reader.next());
         var data = assertInstanceOf(Frame.Data.class, reader.next());
         assertEquals(3, data.seq());
@@ -107,13 +107,13 @@ class FramesTest {
 
     @Test
     void shouldRefuseAHelloTooShortForItsFields() {
-        // A frame as long as the smallest HELLO, but its node id takes 5 of the 20 bytes that
-        // incarnation, clock and maxFrameBytes need.
-        var bytes = ByteBuffer.allocate(4 + 30).putInt(30).put(Frame.HELLO).putInt(Frame.MAGIC)
+        // A frame as long as the smallest HELLO, but its node id takes 5 of the 22 bytes that
+        // incarnation, clock, maxFrameBytes, lanes and lane need.
+        var bytes = ByteBuffer.allocate(4 + 32).putInt(32).put(Frame.HELLO).putInt(Frame.MAGIC)
                 .putShort((short) Frame.VERSION).putShort((short) 6).put("node-1".getBytes(StandardCharsets.UTF_8));
         var reader = new FrameReader(new ByteArrayInputStream(bytes.array()), 4096);
         var error = assertThrows(ProtocolException.class, reader::readHello);
         assertEquals(CloseReason.BAD_HANDSHAKE, error.reason());
-        assertTrue(error.getMessage().contains("HELLO frame of 30 bytes is too short"), error.getMessage());
+        assertTrue(error.getMessage().contains("HELLO frame of 32 bytes is too short"), error.getMessage());
     }
 }

@@ -1,0 +1,701 @@
+package io.etherware.services.network.internal;
+
+import io.etherware.core.message.Criticality;
+import io.etherware.core.message.Message;
+import io.etherware.core.message.MessageFormatException;
+import io.etherware.services.network.CloseReason;
+import java.util.ArrayDeque;
+import java.io.IOException;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.locks.Condition;
+import java.util.concurrent.locks.ReentrantLock;
+
+/**
+ * One lane to another node, across connections: the messages waiting for it (by criticality),
+ * the messages written but not yet acknowledged, where both streams stand, and which connection
+ * is the one in use. A {@link Peer} has one link per lane; each lane is a connection of its own
+ * with its own streams, so a lane's messages never wait behind another lane's bytes.
+ *
+ * <p>Streams. Messages to a peer are numbered in a stream with a random id; the peer
+ * acknowledges how many of them its kernel has. A new connection to the same peer resumes the
+ * stream: what the peer already has is released, the rest is written again and duplicates are
+ * dropped by number, so nothing is lost or delivered twice while both nodes live. If the peer
+ * does not know the stream (it restarted), the unacknowledged messages are reported to their
+ * senders as undeliverable and numbering starts over.
+ *
+ * <p>Locking: {@link #lock} guards the outbound state and the connections' writer requests;
+ * the {@link #inbound} stream's monitor guards it and is taken first when both are needed. Nothing
+ * calls the kernel while holding {@link #lock}.
+ */
+final class Link {
+
+    /**
+     * On a link that carries every criticality (one lane), bytes of NONE and LOW messages written
+     * to the peer and not yet acknowledged, at most (one larger message may go alone): a HIGH
+     * message then waits behind at most this much LOW data in the sockets and the peer's reader,
+     * instead of behind whatever the socket buffers hold (MiBs on loopback). The peer acknowledges
+     * every 64 KiB it receives, so LOW throughput is kept. With two lanes, HIGH never shares a
+     * connection with LOW and no such bound is needed.
+     */
+    static final int LOW_IN_FLIGHT_BYTES = 128 * 1024;
+
+    final String nodeId;
+    /** Which lane of the peer this is. */
+    final int lane;
+    final ReentrantLock lock = new ReentrantLock();
+    /** Signalled when a writer may have work: messages, acknowledgements, control requests. */
+    final Condition work = lock.newCondition();
+    /** The peer's stream to this node on this lane. */
+    private final InboundStream inbound = new InboundStream();
+
+    private final NetworkContext context;
+    /** Whether NONE and LOW messages in flight are bounded ({@link #LOW_IN_FLIGHT_BYTES}). */
+    private final boolean boundsLow;
+    /** Lane 0's link, whose earlier messages a NONE message of this lane waits for; null on lane 0. */
+    private final Link precedent;
+    /** Lane 1's link, woken when this one's acknowledgements may let its NONE messages go; set once. */
+    volatile Link follower;
+
+    // Guarded by lock.
+    private final OutboundQueue queue;
+    private final ArrayDeque<InFlight> inFlight = new ArrayDeque<>();
+    private long streamId;
+    private long nextSeq;
+    /** Someone (the writer thread, or a sender writing directly) owns the active connection's output. */
+    private volatile boolean writerBusy;
+    /** The writer has work but waits for a direct write to give the output back. */
+    private boolean writerWaitsForToken;
+    /** The queue's size, readable without the lock as a hint. */
+    private volatile int queuedHint;
+    /** Bytes of the messages in flight. */
+    private long inFlightBytes;
+    /** Bytes of the NONE and LOW messages in flight. */
+    private long lowInFlightBytes;
+    private volatile long ackedCount;
+    /** Since when something written is unacknowledged with no acknowledgement progress; 0: nothing. */
+    private volatile long unackedSinceNs;
+    private volatile Connection active;
+    private volatile long downSinceNs;
+    private boolean expired;
+    /** Expired and removed from the messenger's peers: a later connection gets a new Peer. */
+    private boolean retired;
+    private boolean closed;
+
+
+    Link(String nodeId, int lane, NetworkContext context, Link precedent) {
+        this.nodeId = nodeId;
+        this.lane = lane;
+        this.context = context;
+        this.precedent = precedent;
+        this.boundsLow = context.lanes().size() == 1;
+        this.queue = new OutboundQueue(context.config().queueCapacity());
+        this.streamId = NetworkContext.newStreamId();
+        this.downSinceNs = NetworkContext.nowNs();
+    }
+
+    // ---------------------------------------------------------------- sending
+
+    /**
+     * Takes a message for this peer without ever blocking. When the connection is idle (nothing
+     * queued, nothing being written, little unacknowledged) the calling thread encodes and writes
+     * it itself: the socket's buffer has room for it (everything acknowledged has left it), and a
+     * thread hand-off is saved. Otherwise the message is queued for the writer: a full queue
+     * evicts a less critical message or, when there is none, drops a NONE or LOW message
+     * (counted) or refuses a MIDDLE or HIGH one by throwing, which the kernel turns into an
+     * undeliverable notice to its sender.
+     */
+    void enqueue(Message message, long after) {
+        // A message that came from the network is relayed: one more hop than it had made.
+        int hops = message.origin() == null ? 0 : message.origin().hops() + 1;
+        if (hops > context.config().maxHops()) {
+            throw new IllegalStateException("message " + message.messageId() + " was already relayed " + (hops - 1)
+                    + " times (maxHops=" + context.config().maxHops() + "): the nodes' routes disagree");
+        }
+        Connection direct = active;
+        // Encoded here, on the sender's thread: its size counts against the peer's byte bound.
+        byte[] xml = encode(message, direct);
+        var outgoing = new Outgoing(message, hops, xml, after);
+        OutboundQueue.Outcome outcome = null;
+        InFlight written = null;
+        lock.lock();
+        try {
+            if (closed) {
+                throw new IllegalStateException("the network messenger of node '" + context.nodeId() + "' is closed");
+            }
+            if (expired) {
+                throw new IllegalStateException("node '" + nodeId + "' is unreachable: disconnected for more than "
+                        + TimeUnit.NANOSECONDS.toMillis(context.config().peerDownGraceNs()) + " ms");
+            }
+            long maxBytes = context.config().maxQueuedBytesPerPeer();
+            if (direct != null && active == direct && !writerBusy && queue.isEmpty()
+                    && !direct.requests.mustPrecedeMessages() && inFlight.size() < context.config().windowMessages()
+                    && inFlightBytes + xml.length <= maxBytes && lowRoomFor(outgoing, 0) && mayGo(outgoing)
+                    && direct.output().fitsDirectWrite(xml.length + Frame.DATA_OVERHEAD_BYTES)) {
+                writerBusy = true;
+                written = new InFlight(nextSeq++, outgoing, xml);
+                markUnacked();
+                addInFlight(written);
+            } else {
+                outcome = queue.offer(outgoing, maxBytes - inFlightBytes);
+                queuedHint = queue.size();
+                if (!(outcome instanceof OutboundQueue.Outcome.Full)) {
+                    work.signal();
+                }
+            }
+        } finally {
+            lock.unlock();
+        }
+        if (written != null) {
+            writeDirect(direct, written);
+            return;
+        }
+        switch (outcome) {
+            case OutboundQueue.Outcome.Evicted evicted -> {
+                for (Outgoing each : evicted.evicted()) {
+                    context.losses().dropped(each.message(), nodeId, "evicted by a more critical message from the full queue"
+                            + " to node '" + nodeId + "'");
+                }
+            }
+            case OutboundQueue.Outcome.Full full -> {
+                String why = "the queue to node '" + nodeId + "' is full (queueCapacity="
+                        + context.config().queueCapacity() + " messages, maxQueuedBytesPerPeer="
+                        + context.config().maxQueuedBytesPerPeer() + " bytes with those in flight) of messages at"
+                        + " least as critical as this one";
+                if (message.qos().criticality().compareTo(Criticality.LOW) <= 0) {
+                    context.losses().dropped(message, nodeId, why);
+                } else {
+                    throw new IllegalStateException(why);
+                }
+            }
+            default -> { }
+        }
+    }
+
+    /**
+     * The message's XML, within the frame limit of {@code connection}'s peer (or this node's own
+     * limit when none is connected), or an exception the kernel reports to the sender.
+     */
+    private byte[] encode(Message message, Connection connection) {
+        byte[] xml;
+        try {
+            xml = context.config().codec().encode(message);
+        } catch (MessageFormatException e) {
+            throw new IllegalStateException("message " + message.messageId() + " does not encode: " + e.getMessage(), e);
+        }
+        int limit = connection != null ? connection.output().peerMaxFrameBytes() : context.config().maxFrameBytes();
+        if (xml.length + Frame.DATA_OVERHEAD_BYTES > limit) {
+            throw new IllegalStateException("message " + message.messageId() + " is a frame of "
+                    + (xml.length + Frame.DATA_OVERHEAD_BYTES) + " bytes, over the " + limit
+                    + " bytes node '" + nodeId + "' accepts");
+        }
+        return xml;
+    }
+
+    private void writeDirect(Connection connection, InFlight entry) {
+        try {
+            connection.output().writeDirect(entry);
+        } catch (IOException e) {
+            // Kept in flight: the next connection sends it again, or its sender hears it is lost.
+            context.closeLater(connection, CloseReason.IO_ERROR, "writing to node '" + nodeId + "' failed: " + e);
+        } finally {
+            endTurn();
+        }
+    }
+
+    /** Whoever owned the output gives it back; a writer waiting for it may take its turn. */
+    void endTurn() {
+        lock.lock();
+        try {
+            writerBusy = false;
+            if (writerWaitsForToken) {
+                // Only then: waking an idle writer after every direct write would cost a thread
+                // switch per message.
+                writerWaitsForToken = false;
+                work.signalAll();
+            }
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    private void awaitToken() throws InterruptedException {
+        writerWaitsForToken = true;
+        work.await();
+    }
+
+    // ---------------------------------------------------------------- connections
+
+    /** Where this node's streams with the peer stand, for the RESUME frame. */
+    Frame.Resume resumeState() {
+        synchronized (inbound) {
+            lock.lock();
+            try {
+                return new Frame.Resume(streamId, inbound.streamId(), inbound.count());
+            } finally {
+                lock.unlock();
+            }
+        }
+    }
+
+    /** The outcome of {@link #activate}. */
+    /**
+     * @param refusal why the connection is refused for a protocol error, or null (a duplicate, or
+     *                the messenger closes)
+     */
+    record Activation(boolean accepted, Connection loser, List<InFlight> lost, String refusal) {
+    }
+
+    /**
+     * Makes {@code candidate}, handshaken, this peer's connection, unless a connection that wins
+     * the one-connection rule is already in use. Resumes or restarts both streams.
+     *
+     * A peer claiming more of our stream than was sent is refused, and our stream starts afresh.
+     */
+    Activation activate(Connection candidate, Frame.Resume theirs, byte[] announceBody) {
+        synchronized (inbound) {
+            lock.lock();
+            try {
+                if (closed || retired) {
+                    return new Activation(false, candidate, List.of(), null);
+                }
+                Connection current = active;
+                Connection loser = null;
+                if (current != null && current != candidate) {
+                    if (!candidate.isPreferredOver(current)) {
+                        return new Activation(false, candidate, List.of(), null);
+                    }
+                    loser = current;
+                }
+                List<InFlight> lost = List.of();
+                if (theirs.knownStreamId() == streamId) {
+                    String refusal = null;
+                    if (theirs.receivedCount() > nextSeq) {
+                        // The streams disagree (a restart raced a second connection): start ours
+                        // afresh under a new id, which the peer adopts on the next connection.
+                        refusal = "the peer claims " + theirs.receivedCount() + " messages of stream "
+                                + Long.toHexString(streamId) + ", only " + nextSeq + " were sent";
+                    } else if (theirs.receivedCount() < ackedCount) {
+                        // Fewer than it acknowledged before: those are released and cannot be sent
+                        // again, so resuming would leave a gap the peer never gets past (a
+                        // connection in its name acknowledged them: an impersonator, or a bug).
+                        refusal = "the peer claims " + theirs.receivedCount() + " messages of stream "
+                                + Long.toHexString(streamId) + ", but had acknowledged " + ackedCount;
+                    }
+                    if (refusal != null) {
+                        // With a connection in use, the candidate is the one that lies (an
+                        // impostor, on a plain link): refuse it and leave the stream alone.
+                        // Without one, start the stream afresh so the next connection agrees.
+                        List<InFlight> unknown = current != null && current != candidate ? List.of() : resetStream();
+                        return new Activation(false, candidate, unknown, refusal);
+                    }
+                    releaseInFlightBelow(theirs.receivedCount());
+                    ackedCount = Math.max(ackedCount, theirs.receivedCount());
+                    candidate.requests.resend(List.copyOf(inFlight));
+                } else {
+                    // The peer does not know our stream: what it did not acknowledge is of unknown
+                    // fate; the peer starts our stream from 0 (it adopts its id from our RESUME).
+                    lost = List.copyOf(inFlight);
+                    inFlight.clear();
+                    inFlightBytes = 0;
+                    lowInFlightBytes = 0;
+                    unackedSinceNs = 0;
+                    nextSeq = 0;
+                    ackedCount = 0;
+                    candidate.requests.resend(List.of());
+                }
+                inbound.resume(theirs.streamId());
+                if (loser != null) {
+                    loser.requests.requestBye(CloseReason.DUPLICATE, "replaced by the connection dialed by '"
+                            + candidate.initiatorId() + "'");
+                }
+                active = candidate;
+                expired = false;
+                unackedSinceNs = inFlight.isEmpty() ? 0 : NetworkContext.nowNs();
+                candidate.requests.announce(announceBody);
+                work.signalAll();
+                return new Activation(true, loser, lost, null);
+            } finally {
+                lock.unlock();
+            }
+        }
+    }
+
+    /**
+     * The connection ends: if it was this peer's, the peer is down from now on (its messages wait
+     * for a new connection, for at most the grace period).
+     */
+    boolean deactivate(Connection connection) {
+        lock.lock();
+        try {
+            if (active != connection) {
+                return false;
+            }
+            active = null;
+            downSinceNs = NetworkContext.nowNs();
+            work.signalAll();
+            return true;
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    Connection active() {
+        return active;
+    }
+
+    boolean isConnected() {
+        return active != null;
+    }
+
+    // ---------------------------------------------------------------- the writer's side
+
+    /**
+     * What a writer does in one turn; null when it should stop. Blocks until there is work or a
+     * heartbeat is due.
+     */
+    WriterTurn nextTurn(Connection connection, int batch) throws InterruptedException {
+        int window = context.config().windowMessages();
+        lock.lock();
+        try {
+            while (true) {
+                if (active != connection) {
+                    if (writerBusy) {
+                        awaitToken();
+                        continue;
+                    }
+                    WriterTurn last = connection.requests.takeBye();
+                    writerBusy = last != null;
+                    return last;
+                }
+                Outgoing head = queue.peek();
+                boolean sendable = head != null && inFlight.size() < window && lowRoomFor(head, 0) && mayGo(head);
+                if (!connection.requests.hasRequests() && !sendable) {
+                    long waitNs = connection.output().heartbeatDueNs() - NetworkContext.nowNs();
+                    if (waitNs > 0) {
+                        work.awaitNanos(waitNs);
+                        continue;
+                    }
+                    connection.requests.requestHeartbeat();
+                }
+                if (writerBusy) {
+                    awaitToken(); // a sender is writing directly; it signals when done
+                    continue;
+                }
+                break;
+            }
+            WriterTurn turn = connection.requests.takeRequests(batch);
+            // New messages only once every message to send again is out: the peer expects the
+            // stream in order.
+            int room = connection.requests.mustPrecedeMessages() ? 0 : Math.min(batch, window - inFlight.size());
+            long lowChosen = 0;
+            while (turn.fresh.size() < room) {
+                Outgoing next = queue.peek();
+                if (next == null || !lowRoomFor(next, lowChosen) || !mayGo(next)) {
+                    break; // the rest are NONE or LOW too: they wait for acknowledgements
+                }
+                if (next.isSheddable()) {
+                    lowChosen += next.xml().length;
+                }
+                turn.fresh.add(queue.poll());
+            }
+            queuedHint = queue.size();
+            writerBusy = true;
+            return turn;
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    /**
+     * Numbers the encoded messages of a turn and keeps them until acknowledged; null if the
+     * connection is no longer the peer's, in which case they go back to the front of the queue.
+     */
+    List<InFlight> assign(Connection connection, List<Outgoing> encoded, List<byte[]> xml) {
+        lock.lock();
+        try {
+            if (active != connection) {
+                queue.pushBack(encoded);
+                queuedHint = queue.size();
+                work.signalAll();
+                return null;
+            }
+            var assigned = new ArrayList<InFlight>(encoded.size());
+            if (!encoded.isEmpty()) {
+                markUnacked();
+            }
+            for (int i = 0; i < encoded.size(); i++) {
+                var entry = new InFlight(nextSeq++, encoded.get(i), xml.get(i));
+                addInFlight(entry);
+                assigned.add(entry);
+            }
+            return assigned;
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    private void releaseInFlightBelow(long count) {
+        boolean released = false;
+        while (!inFlight.isEmpty() && inFlight.peekFirst().seq() < count) {
+            removedFromFlight(inFlight.pollFirst());
+            released = true;
+        }
+        if (inFlight.isEmpty()) {
+            unackedSinceNs = 0;
+        } else if (released) {
+            unackedSinceNs = NetworkContext.nowNs();
+        }
+    }
+
+    /**
+     * The barrier for a NONE message of lane 1 queued now (see {@link Peer#enqueue}): this lane's
+     * messages numbered or queued so far. Counting every queued one by number errs on the late side
+     * (a HIGH message queued later may be numbered first); {@link #hasPassed} also accepts a drained
+     * lane, so the wait always ends.
+     */
+    long barrier() {
+        lock.lock();
+        try {
+            return nextSeq + queue.size();
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    /**
+     * Whether the peer has acknowledged {@code count} messages of this lane's stream, or nothing
+     * is queued or unacknowledged here. Reads volatile state only: lane 1 asks it with its own lock
+     * held, and never takes this link's lock.
+     */
+    boolean hasPassed(long count) {
+        return ackedCount >= count || queuedHint == 0 && unackedSinceNs == 0;
+    }
+
+    /** Whether a NONE message waiting for lane 0 may go (lock held). */
+    private boolean mayGo(Outgoing next) {
+        return next.after() < 0 || precedent == null || precedent.hasPassed(next.after());
+    }
+
+    /** Lane 0 made progress: a writer waiting for it to let a NONE message go may have work. */
+    private void wake() {
+        lock.lock();
+        try {
+            if (!queue.isEmpty()) {
+                work.signal();
+            }
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    /** Whether {@code next} may go now, with {@code chosen} more LOW bytes already taken (lock held). */
+    private boolean lowRoomFor(Outgoing next, long chosen) {
+        if (!boundsLow || !next.isSheddable()) {
+            return true;
+        }
+        long already = lowInFlightBytes + chosen;
+        return already == 0 || already + next.xml().length <= LOW_IN_FLIGHT_BYTES;
+    }
+
+    private void addInFlight(InFlight entry) {
+        inFlight.addLast(entry);
+        inFlightBytes += entry.xml().length;
+        if (entry.outgoing().isSheddable()) {
+            lowInFlightBytes += entry.xml().length;
+        }
+    }
+
+    private void removedFromFlight(InFlight entry) {
+        inFlightBytes -= entry.xml().length;
+        if (entry.outgoing().isSheddable()) {
+            lowInFlightBytes -= entry.xml().length;
+        }
+    }
+
+    /** Something is about to be in flight (lock held): the not-reading clock starts if it was empty. */
+    private void markUnacked() {
+        if (inFlight.isEmpty()) {
+            unackedSinceNs = NetworkContext.nowNs();
+        }
+    }
+
+    /**
+     * How long the peer has read nothing of what was written to it: no acknowledgement progress
+     * while messages are in flight, or a write of the active connection blocked.
+     */
+    long unreadForNs(long nowNs) {
+        Connection connection = active;
+        long since = unackedSinceNs;
+        long unacked = since == 0 ? 0 : nowNs - since;
+        return Math.max(unacked, connection == null ? 0 : connection.output().writeBlockedForNs(nowNs));
+    }
+
+    /** The peer's kernel has the first {@code count} messages of the stream. */
+    void onAck(Connection connection, long count) throws ProtocolException {
+        if (count == ackedCount) {
+            return;
+        }
+        List<InFlight> lost;
+        String error;
+        lock.lock();
+        try {
+            if (active != connection || count == ackedCount) {
+                return;
+            }
+            if (count > nextSeq) {
+                error = "acknowledgement of " + count + " messages, only " + nextSeq + " were sent";
+                lost = resetStream();
+            } else if (count < ackedCount) {
+                // Acknowledgements are cumulative: one that goes back contradicts what was released.
+                error = "acknowledgement of " + count + " messages after " + ackedCount + " were acknowledged";
+                lost = resetStream();
+            } else {
+                error = null;
+                lost = List.of();
+                acknowledged(connection, count);
+            }
+        } finally {
+            lock.unlock();
+        }
+        if (error != null) {
+            // Reported once the connection is closed: notices to the peer then wait for the next one.
+            throw new StreamResetException(error, lost);
+        }
+        Link waiting = follower;
+        if (waiting != null) {
+            waiting.wake(); // after our lock: lane 1 never holds its lock while taking ours, nor we the reverse
+        }
+    }
+
+    /** Releases the acknowledged messages (lock held). */
+    private void acknowledged(Connection connection, long count) {
+        int window = context.config().windowMessages();
+        boolean windowWasFull = inFlight.size() >= window;
+        boolean lowWasFull = lowInFlightBytes > 0;
+        releaseInFlightBelow(count);
+        ackedCount = count;
+        if (inFlight.isEmpty()) {
+            connection.output().allDataAcknowledged();
+        }
+        if (!queue.isEmpty() && (windowWasFull && inFlight.size() < window || lowWasFull)) {
+            work.signal(); // the writer waited for room in the window, or for LOW room
+        }
+    }
+
+    /** The peer refused message {@code seq}; returns it (to report), or null if it is not kept. */
+    Outgoing onReject(Connection connection, long seq) {
+        lock.lock();
+        try {
+            if (active != connection) {
+                return null;
+            }
+            var each = inFlight.iterator();
+            while (each.hasNext()) {
+                InFlight entry = each.next();
+                if (entry.seq() == seq) {
+                    each.remove();
+                    removedFromFlight(entry);
+                    return entry.outgoing();
+                }
+            }
+            return null;
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    /** Messages handed to this node's kernel from the peer's stream: the acknowledgement to send. */
+    long inboundCount() {
+        return inbound.count();
+    }
+
+    /**
+     * Hands a message frame over in its place in the inbound stream (see {@link
+     * InboundStream#deliver}), if {@code connection} is still this lane's.
+     *
+     * @return false for a duplicate (dropped) or a frame of a replaced connection
+     */
+    boolean deliverInOrder(Connection connection, long seq, InboundStream.Delivery delivery) throws ProtocolException {
+        synchronized (inbound) {
+            return active == connection && inbound.deliver(seq, delivery);
+        }
+    }
+
+    // ---------------------------------------------------------------- housekeeping
+
+    /** Since when no connection carries this lane (meaningful while {@link #active()} is null). */
+    long downSinceNs() {
+        return downSinceNs;
+    }
+
+    /**
+     * The peer has been down longer than the grace period (its {@link Peer} decides): stop accepting
+     * messages for it and retire this link (the messenger forgets the peer; a later connection
+     * starts afresh), and return what waited, to report to the senders. Null if it is connected
+     * again or already expired.
+     */
+    List<Outgoing> expire() {
+        lock.lock();
+        try {
+            if (active != null || expired || closed) {
+                return null;
+            }
+            expired = true;
+            retired = true;
+            return abandonAll();
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    /** The messenger closes: refuse new messages and return what waited. */
+    List<Outgoing> close() {
+        lock.lock();
+        try {
+            closed = true;
+            work.signalAll();
+            return abandonAll();
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    private List<Outgoing> abandonAll() {
+        var lost = new ArrayList<Outgoing>(inFlight.size() + queue.size());
+        for (InFlight entry : resetStream()) {
+            lost.add(entry.outgoing());
+        }
+        lost.addAll(queue.drain());
+        queuedHint = 0;
+        return lost;
+    }
+
+    /**
+     * Starts the outbound stream afresh under a new id (the peer, when it sees the id, must not
+     * expect the old numbers) and returns the unacknowledged messages, whose fate is unknown.
+     */
+    private List<InFlight> resetStream() {
+        List<InFlight> lost = List.copyOf(inFlight);
+        inFlight.clear();
+        inFlightBytes = 0;
+        lowInFlightBytes = 0;
+        unackedSinceNs = 0;
+        streamId = NetworkContext.newStreamId();
+        nextSeq = 0;
+        ackedCount = 0;
+        return lost;
+    }
+
+
+    /** Waiting messages, and written ones not yet acknowledged. */
+    int[] backlog() {
+        lock.lock();
+        try {
+            return new int[] {queue.size(), inFlight.size()};
+        } finally {
+            lock.unlock();
+        }
+    }
+}
