@@ -66,6 +66,7 @@ class HostilePeerTest {
         target.node.add(SILENT, () -> (message, context) -> { });
         legit = TestNode.start("legit", tls("legit").peer(target.address()));
         assertTrue(legit.net.awaitResolvable(ECHO, Duration.ofSeconds(30)));
+        assertTrue(target.net.awaitConnected("legit", Duration.ofSeconds(30)), "both of legit's lanes are up");
         load = LegitLoad.start(legit.node, ECHO, LEGIT_TIMEOUT_MS);
         Await.until("the legitimate requests flow", () -> load.answered() >= 20);
         legitConnection = target.net.peer("legit").orElseThrow().remote().orElseThrow();

@@ -39,6 +39,7 @@ class NetworkBadInputTest {
         b.node.add(SINK, () -> (message, context) -> sunk.add(message));
         c = TestNode.start("c", TestNode.config().peer(b.address()));
         assertTrue(c.net.awaitResolvable(ECHO, Duration.ofSeconds(30)));
+        assertTrue(c.net.awaitConnected("b", Duration.ofSeconds(30)), "both lanes are up");
     }
 
     @AfterEach

@@ -54,9 +54,10 @@ class NetworkConfigTest {
                 var messenger = NetworkMessenger.start(b, NetworkConfig.builder().peer(taken).build());
                 assertTrue(first.awaitConnected("b", Duration.ofSeconds(30)));
                 b.close();
-                Await.until("closing node b closed its messenger, which said BYE",
-                        () -> first.stats().closes().size() > 0);
+                Await.until("closing node b closed its messenger, which said BYE on every lane",
+                        () -> first.stats().closes(CloseReason.PEER_CLOSED) >= TestNode.LANES);
                 assertEquals(TestNode.LANES, first.stats().closes(CloseReason.PEER_CLOSED), first.stats().toString());
+                assertEquals(1, first.stats().closes().size(), "no other close: " + first.stats());
                 assertTrue(!first.peer("b").orElseThrow().connected());
                 messenger.close(); // idempotent
             }

@@ -60,6 +60,7 @@ class NetworkTlsTest {
              var a = TestNode.start("a", tls("a").peer(b.address()))) {
             addWho(b);
             assertTrue(a.net.awaitResolvable(WHO, Duration.ofSeconds(30)));
+            assertTrue(b.net.awaitConnected("a", Duration.ofSeconds(30)), "both of a's lanes are up at b");
             // mallory holds a valid certificate of the deployment, for 'mallory', and says it is 'a'.
             ConnectionFactory mallorysKey = deployment.factory("mallory");
             try (var raw = new RawPeer(authenticatedSocket(mallorysKey, b.address()))) {

@@ -270,7 +270,7 @@ final class Connection implements Runnable {
             if (link.inboundCount() - output.lastAckSent() >= context.config().windowMessages() / 4
                     || bytesSinceAckRequest >= ACK_EVERY_BYTES) {
                 // By count for small messages, by bytes for large ones: a sender keeps at most
-                // Link.LOW_IN_FLIGHT_BYTES of LOW messages (one lane) unacknowledged.
+                // OutboundStream.LOW_IN_FLIGHT_BYTES of LOW messages (one lane) unacknowledged.
                 bytesSinceAckRequest = 0;
                 requestAck();
             }

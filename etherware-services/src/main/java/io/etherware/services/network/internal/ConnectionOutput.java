@@ -123,19 +123,17 @@ final class ConnectionOutput {
     /** Numbers and writes new messages (encoded by their senders); reports those that cannot go. */
     private boolean writeFresh(Connection connection, List<Outgoing> fresh, long ackNow) throws IOException {
         var encoded = new ArrayList<Outgoing>(fresh.size());
-        var xml = new ArrayList<byte[]>(fresh.size());
         for (Outgoing outgoing : fresh) {
             int frameBytes = outgoing.xml().length + Frame.DATA_OVERHEAD_BYTES;
             if (frameBytes <= peerMaxFrameBytes) {
                 encoded.add(outgoing);
-                xml.add(outgoing.xml());
             } else {
                 // Queued before this peer said its limit, which is below this node's own.
                 context.losses().lost(outgoing.message(), "its frame of " + frameBytes + " bytes is over the "
                         + peerMaxFrameBytes + " bytes node '" + peerId + "' accepts");
             }
         }
-        List<InFlight> assigned = link.assign(connection, encoded, xml);
+        List<InFlight> assigned = link.assign(connection, encoded);
         if (assigned == null) {
             return false;
         }

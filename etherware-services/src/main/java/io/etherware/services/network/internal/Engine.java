@@ -24,7 +24,6 @@ import java.util.ArrayList;
 import java.util.Comparator;
 import java.util.List;
 import java.util.Optional;
-import java.util.Set;
 import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.ConcurrentLinkedQueue;
 import java.util.concurrent.CopyOnWriteArrayList;
@@ -59,15 +58,13 @@ public final class Engine {
     private final Counters counters = new Counters();
     private final RouteTable routes;
     private final ConcurrentHashMap<String, Peer> peers = new ConcurrentHashMap<>();
-    private final Set<Connection> connections = ConcurrentHashMap.newKeySet();
-    /** Connections in their handshake, oldest first. */
-    private final java.util.concurrent.ConcurrentLinkedDeque<Connection> pending = new java.util.concurrent.ConcurrentLinkedDeque<>();
     private final List<Dialer> dialers = new CopyOnWriteArrayList<>();
     private final ConcurrentLinkedQueue<Profile> toReconcile = new ConcurrentLinkedQueue<>();
     private final ScheduledThreadPoolExecutor control;
     private final Object stateChanged = new Object();
     private final NetworkContext context;
     private final ConnectionEvents events = new Events();
+    private final Admission admission;
     private ServerSocket server;
     private Thread acceptor;
     private volatile boolean closed;
@@ -93,6 +90,7 @@ public final class Engine {
         }
         this.context = new NetworkContext(nodeId, incarnation, kernel, config, counters, networkTime,
                 new Losses(kernel, counters), lanes, control);
+        this.admission = new Admission(context);
     }
 
     /** The policy the reader and writer threads of {@code lane} ask for. */
@@ -179,7 +177,7 @@ public final class Engine {
                 log.debug("node {}: closing the server socket: {}", nodeId, e.toString());
             }
         }
-        for (Connection connection : List.copyOf(connections)) {
+        for (Connection connection : admission.all()) {
             connection.close(CloseReason.SHUTDOWN, "node '" + nodeId + "' is closing its network messenger");
         }
         for (Peer peer : peers.values()) {
@@ -231,15 +229,13 @@ public final class Engine {
     }
 
     /**
-     * A connection over {@code socket}, or null (socket closed) if we close or the established
-     * connections are at their limit. Connections in their handshake have a budget of their own:
-     * beyond it the oldest pending one is pushed out, so idle connections cannot lock honest
-     * peers out (an honest handshake takes milliseconds; a flood's connections wait for the timeout).
+     * A connection over {@code socket}, or null (socket closed) if we close or the connections are
+     * at their limit (see {@link Admission}).
      */
     Connection open(Socket socket, Dialer dialer) {
-        if (closed || connections.size() - pending.size() >= config.maxConnections()) {
-            log.warn("node {}: refusing a connection from {}: {}", nodeId, socket.getRemoteSocketAddress(),
-                    closed ? "closing" : "maxConnections=" + config.maxConnections() + " reached");
+        String refusal = closed ? "closing" : admission.refusal();
+        if (refusal != null) {
+            log.warn("node {}: refusing a connection from {}: {}", nodeId, socket.getRemoteSocketAddress(), refusal);
             try {
                 socket.close();
             } catch (IOException e) {
@@ -248,25 +244,7 @@ public final class Engine {
             return null;
         }
         var connection = new Connection(context, events, socket, dialer);
-        connections.add(connection);
-        pending.addLast(connection);
-        while (pending.size() > config.maxPendingHandshakes()) {
-            Connection oldest = pending.pollFirst();
-            if (oldest == null) {
-                break;
-            }
-            if (oldest.isActivated()) {
-                continue; // finished its handshake just now
-            }
-            long evicted = counters.handshakesEvicted.incrementAndGet();
-            if (evicted == 1 || evicted % 1000 == 0) {
-                log.warn("node {}: more than maxPendingHandshakes={} connections in their handshake; closing the"
-                        + " oldest ({} so far; a flood of idle connections?)", nodeId, config.maxPendingHandshakes(),
-                        evicted);
-            }
-            oldest.abort(CloseReason.HANDSHAKE_EVICTED, "pushed out by newer connections: maxPendingHandshakes="
-                    + config.maxPendingHandshakes() + " reached");
-        }
+        admission.admit(connection);
         return connection;
     }
 
@@ -297,7 +275,7 @@ public final class Engine {
 
         @Override
         public void handshakeEnded(Connection connection) {
-            pending.remove(connection);
+            admission.handshakeEnded(connection);
         }
 
         @Override
@@ -338,8 +316,7 @@ public final class Engine {
 
         @Override
         public void connectionEnded(Connection connection, boolean wasActive, CloseReason reason) {
-            connections.remove(connection);
-            pending.remove(connection);
+            admission.ended(connection);
             if (connection.dialer() != null) {
                 connection.dialer().ended(connection.isActivated(), reason);
             }

@@ -4,7 +4,6 @@ import io.etherware.core.message.Criticality;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageFormatException;
 import io.etherware.services.network.CloseReason;
-import java.util.ArrayDeque;
 import java.io.IOException;
 import java.util.ArrayList;
 import java.util.List;
@@ -31,16 +30,6 @@ import java.util.concurrent.locks.ReentrantLock;
  */
 final class Link {
 
-    /**
-     * On a link that carries every criticality (one lane), bytes of NONE and LOW messages written
-     * to the peer and not yet acknowledged, at most (one larger message may go alone): a HIGH
-     * message then waits behind at most this much LOW data in the sockets and the peer's reader,
-     * instead of behind whatever the socket buffers hold (MiBs on loopback). The peer acknowledges
-     * every 64 KiB it receives, so LOW throughput is kept. With two lanes, HIGH never shares a
-     * connection with LOW and no such bound is needed.
-     */
-    static final int LOW_IN_FLIGHT_BYTES = 128 * 1024;
-
     final String nodeId;
     /** Which lane of the peer this is. */
     final int lane;
@@ -51,8 +40,6 @@ final class Link {
     private final InboundStream inbound = new InboundStream();
 
     private final NetworkContext context;
-    /** Whether NONE and LOW messages in flight are bounded ({@link #LOW_IN_FLIGHT_BYTES}). */
-    private final boolean boundsLow;
     /** Lane 0's link, whose earlier messages a NONE message of this lane waits for; null on lane 0. */
     private final Link precedent;
     /** Lane 1's link, woken when this one's acknowledgements may let its NONE messages go; set once. */
@@ -60,22 +47,14 @@ final class Link {
 
     // Guarded by lock.
     private final OutboundQueue queue;
-    private final ArrayDeque<InFlight> inFlight = new ArrayDeque<>();
-    private long streamId;
-    private long nextSeq;
+    /** This node's stream to the peer on this lane. */
+    private final OutboundStream out;
     /** Someone (the writer thread, or a sender writing directly) owns the active connection's output. */
     private volatile boolean writerBusy;
     /** The writer has work but waits for a direct write to give the output back. */
     private boolean writerWaitsForToken;
     /** The queue's size, readable without the lock as a hint. */
     private volatile int queuedHint;
-    /** Bytes of the messages in flight. */
-    private long inFlightBytes;
-    /** Bytes of the NONE and LOW messages in flight. */
-    private long lowInFlightBytes;
-    private volatile long ackedCount;
-    /** Since when something written is unacknowledged with no acknowledgement progress; 0: nothing. */
-    private volatile long unackedSinceNs;
     private volatile Connection active;
     private volatile long downSinceNs;
     private boolean expired;
@@ -89,9 +68,8 @@ final class Link {
         this.lane = lane;
         this.context = context;
         this.precedent = precedent;
-        this.boundsLow = context.lanes().size() == 1;
+        this.out = new OutboundStream(context.lanes().size() == 1);
         this.queue = new OutboundQueue(context.config().queueCapacity());
-        this.streamId = NetworkContext.newStreamId();
         this.downSinceNs = NetworkContext.nowNs();
     }
 
@@ -130,15 +108,13 @@ final class Link {
             }
             long maxBytes = context.config().maxQueuedBytesPerPeer();
             if (direct != null && active == direct && !writerBusy && queue.isEmpty()
-                    && !direct.requests.mustPrecedeMessages() && inFlight.size() < context.config().windowMessages()
-                    && inFlightBytes + xml.length <= maxBytes && lowRoomFor(outgoing, 0) && mayGo(outgoing)
+                    && !direct.requests.mustPrecedeMessages() && out.size() < context.config().windowMessages()
+                    && out.bytes() + xml.length <= maxBytes && out.lowRoomFor(outgoing, 0) && mayGo(outgoing)
                     && direct.output().fitsDirectWrite(xml.length + Frame.DATA_OVERHEAD_BYTES)) {
                 writerBusy = true;
-                written = new InFlight(nextSeq++, outgoing, xml);
-                markUnacked();
-                addInFlight(written);
+                written = out.add(outgoing);
             } else {
-                outcome = queue.offer(outgoing, maxBytes - inFlightBytes);
+                outcome = queue.offer(outgoing, maxBytes - out.bytes());
                 queuedHint = queue.size();
                 if (!(outcome instanceof OutboundQueue.Outcome.Full)) {
                     work.signal();
@@ -232,7 +208,7 @@ final class Link {
         synchronized (inbound) {
             lock.lock();
             try {
-                return new Frame.Resume(streamId, inbound.streamId(), inbound.count());
+                return new Frame.Resume(out.streamId(), inbound.streamId(), inbound.count());
             } finally {
                 lock.unlock();
             }
@@ -269,40 +245,24 @@ final class Link {
                     loser = current;
                 }
                 List<InFlight> lost = List.of();
-                if (theirs.knownStreamId() == streamId) {
-                    String refusal = null;
-                    if (theirs.receivedCount() > nextSeq) {
-                        // The streams disagree (a restart raced a second connection): start ours
-                        // afresh under a new id, which the peer adopts on the next connection.
-                        refusal = "the peer claims " + theirs.receivedCount() + " messages of stream "
-                                + Long.toHexString(streamId) + ", only " + nextSeq + " were sent";
-                    } else if (theirs.receivedCount() < ackedCount) {
-                        // Fewer than it acknowledged before: those are released and cannot be sent
-                        // again, so resuming would leave a gap the peer never gets past (a
-                        // connection in its name acknowledged them: an impersonator, or a bug).
-                        refusal = "the peer claims " + theirs.receivedCount() + " messages of stream "
-                                + Long.toHexString(streamId) + ", but had acknowledged " + ackedCount;
-                    }
+                if (theirs.knownStreamId() == out.streamId()) {
+                    // A RESUME that contradicts the stream: a restart raced a second connection, or
+                    // a connection in the peer's name acknowledged what it now denies (an impostor,
+                    // or a bug).
+                    String refusal = out.resumeRefusal(theirs.receivedCount());
                     if (refusal != null) {
                         // With a connection in use, the candidate is the one that lies (an
                         // impostor, on a plain link): refuse it and leave the stream alone.
                         // Without one, start the stream afresh so the next connection agrees.
-                        List<InFlight> unknown = current != null && current != candidate ? List.of() : resetStream();
+                        List<InFlight> unknown = current != null && current != candidate ? List.of() : out.reset();
                         return new Activation(false, candidate, unknown, refusal);
                     }
-                    releaseInFlightBelow(theirs.receivedCount());
-                    ackedCount = Math.max(ackedCount, theirs.receivedCount());
-                    candidate.requests.resend(List.copyOf(inFlight));
+                    out.acknowledge(theirs.receivedCount());
+                    candidate.requests.resend(out.unacknowledged());
                 } else {
                     // The peer does not know our stream: what it did not acknowledge is of unknown
                     // fate; the peer starts our stream from 0 (it adopts its id from our RESUME).
-                    lost = List.copyOf(inFlight);
-                    inFlight.clear();
-                    inFlightBytes = 0;
-                    lowInFlightBytes = 0;
-                    unackedSinceNs = 0;
-                    nextSeq = 0;
-                    ackedCount = 0;
+                    lost = out.restartNumbering();
                     candidate.requests.resend(List.of());
                 }
                 inbound.resume(theirs.streamId());
@@ -312,7 +272,7 @@ final class Link {
                 }
                 active = candidate;
                 expired = false;
-                unackedSinceNs = inFlight.isEmpty() ? 0 : NetworkContext.nowNs();
+                out.restartClock();
                 candidate.requests.announce(announceBody);
                 work.signalAll();
                 return new Activation(true, loser, lost, null);
@@ -370,7 +330,7 @@ final class Link {
                     return last;
                 }
                 Outgoing head = queue.peek();
-                boolean sendable = head != null && inFlight.size() < window && lowRoomFor(head, 0) && mayGo(head);
+                boolean sendable = head != null && out.size() < window && out.lowRoomFor(head, 0) && mayGo(head);
                 if (!connection.requests.hasRequests() && !sendable) {
                     long waitNs = connection.output().heartbeatDueNs() - NetworkContext.nowNs();
                     if (waitNs > 0) {
@@ -388,11 +348,11 @@ final class Link {
             WriterTurn turn = connection.requests.takeRequests(batch);
             // New messages only once every message to send again is out: the peer expects the
             // stream in order.
-            int room = connection.requests.mustPrecedeMessages() ? 0 : Math.min(batch, window - inFlight.size());
+            int room = connection.requests.mustPrecedeMessages() ? 0 : Math.min(batch, window - out.size());
             long lowChosen = 0;
             while (turn.fresh.size() < room) {
                 Outgoing next = queue.peek();
-                if (next == null || !lowRoomFor(next, lowChosen) || !mayGo(next)) {
+                if (next == null || !out.lowRoomFor(next, lowChosen) || !mayGo(next)) {
                     break; // the rest are NONE or LOW too: they wait for acknowledgements
                 }
                 if (next.isSheddable()) {
@@ -412,7 +372,7 @@ final class Link {
      * Numbers the encoded messages of a turn and keeps them until acknowledged; null if the
      * connection is no longer the peer's, in which case they go back to the front of the queue.
      */
-    List<InFlight> assign(Connection connection, List<Outgoing> encoded, List<byte[]> xml) {
+    List<InFlight> assign(Connection connection, List<Outgoing> encoded) {
         lock.lock();
         try {
             if (active != connection) {
@@ -422,30 +382,12 @@ final class Link {
                 return null;
             }
             var assigned = new ArrayList<InFlight>(encoded.size());
-            if (!encoded.isEmpty()) {
-                markUnacked();
-            }
-            for (int i = 0; i < encoded.size(); i++) {
-                var entry = new InFlight(nextSeq++, encoded.get(i), xml.get(i));
-                addInFlight(entry);
-                assigned.add(entry);
+            for (Outgoing outgoing : encoded) {
+                assigned.add(out.add(outgoing));
             }
             return assigned;
         } finally {
             lock.unlock();
-        }
-    }
-
-    private void releaseInFlightBelow(long count) {
-        boolean released = false;
-        while (!inFlight.isEmpty() && inFlight.peekFirst().seq() < count) {
-            removedFromFlight(inFlight.pollFirst());
-            released = true;
-        }
-        if (inFlight.isEmpty()) {
-            unackedSinceNs = 0;
-        } else if (released) {
-            unackedSinceNs = NetworkContext.nowNs();
         }
     }
 
@@ -458,7 +400,7 @@ final class Link {
     long barrier() {
         lock.lock();
         try {
-            return nextSeq + queue.size();
+            return out.nextSeq() + queue.size();
         } finally {
             lock.unlock();
         }
@@ -470,7 +412,7 @@ final class Link {
      * held, and never takes this link's lock.
      */
     boolean hasPassed(long count) {
-        return ackedCount >= count || queuedHint == 0 && unackedSinceNs == 0;
+        return out.ackedCount() >= count || queuedHint == 0 && out.unackedSinceNs() == 0;
     }
 
     /** Whether a NONE message waiting for lane 0 may go (lock held). */
@@ -490,67 +432,32 @@ final class Link {
         }
     }
 
-    /** Whether {@code next} may go now, with {@code chosen} more LOW bytes already taken (lock held). */
-    private boolean lowRoomFor(Outgoing next, long chosen) {
-        if (!boundsLow || !next.isSheddable()) {
-            return true;
-        }
-        long already = lowInFlightBytes + chosen;
-        return already == 0 || already + next.xml().length <= LOW_IN_FLIGHT_BYTES;
-    }
-
-    private void addInFlight(InFlight entry) {
-        inFlight.addLast(entry);
-        inFlightBytes += entry.xml().length;
-        if (entry.outgoing().isSheddable()) {
-            lowInFlightBytes += entry.xml().length;
-        }
-    }
-
-    private void removedFromFlight(InFlight entry) {
-        inFlightBytes -= entry.xml().length;
-        if (entry.outgoing().isSheddable()) {
-            lowInFlightBytes -= entry.xml().length;
-        }
-    }
-
-    /** Something is about to be in flight (lock held): the not-reading clock starts if it was empty. */
-    private void markUnacked() {
-        if (inFlight.isEmpty()) {
-            unackedSinceNs = NetworkContext.nowNs();
-        }
-    }
-
     /**
      * How long the peer has read nothing of what was written to it: no acknowledgement progress
      * while messages are in flight, or a write of the active connection blocked.
      */
     long unreadForNs(long nowNs) {
         Connection connection = active;
-        long since = unackedSinceNs;
+        long since = out.unackedSinceNs();
         long unacked = since == 0 ? 0 : nowNs - since;
         return Math.max(unacked, connection == null ? 0 : connection.output().writeBlockedForNs(nowNs));
     }
 
     /** The peer's kernel has the first {@code count} messages of the stream. */
     void onAck(Connection connection, long count) throws ProtocolException {
-        if (count == ackedCount) {
+        if (count == out.ackedCount()) {
             return;
         }
         List<InFlight> lost;
         String error;
         lock.lock();
         try {
-            if (active != connection || count == ackedCount) {
+            if (active != connection || count == out.ackedCount()) {
                 return;
             }
-            if (count > nextSeq) {
-                error = "acknowledgement of " + count + " messages, only " + nextSeq + " were sent";
-                lost = resetStream();
-            } else if (count < ackedCount) {
-                // Acknowledgements are cumulative: one that goes back contradicts what was released.
-                error = "acknowledgement of " + count + " messages after " + ackedCount + " were acknowledged";
-                lost = resetStream();
+            error = out.ackContradiction(count);
+            if (error != null) {
+                lost = out.reset();
             } else {
                 error = null;
                 lost = List.of();
@@ -572,14 +479,13 @@ final class Link {
     /** Releases the acknowledged messages (lock held). */
     private void acknowledged(Connection connection, long count) {
         int window = context.config().windowMessages();
-        boolean windowWasFull = inFlight.size() >= window;
-        boolean lowWasFull = lowInFlightBytes > 0;
-        releaseInFlightBelow(count);
-        ackedCount = count;
-        if (inFlight.isEmpty()) {
+        boolean windowWasFull = out.size() >= window;
+        boolean lowWasFull = out.hasLowInFlight();
+        out.acknowledge(count);
+        if (out.isEmpty()) {
             connection.output().allDataAcknowledged();
         }
-        if (!queue.isEmpty() && (windowWasFull && inFlight.size() < window || lowWasFull)) {
+        if (!queue.isEmpty() && (windowWasFull && out.size() < window || lowWasFull)) {
             work.signal(); // the writer waited for room in the window, or for LOW room
         }
     }
@@ -591,16 +497,8 @@ final class Link {
             if (active != connection) {
                 return null;
             }
-            var each = inFlight.iterator();
-            while (each.hasNext()) {
-                InFlight entry = each.next();
-                if (entry.seq() == seq) {
-                    each.remove();
-                    removedFromFlight(entry);
-                    return entry.outgoing();
-                }
-            }
-            return null;
+            InFlight refused = out.remove(seq);
+            return refused == null ? null : refused.outgoing();
         } finally {
             lock.unlock();
         }
@@ -663,8 +561,8 @@ final class Link {
     }
 
     private List<Outgoing> abandonAll() {
-        var lost = new ArrayList<Outgoing>(inFlight.size() + queue.size());
-        for (InFlight entry : resetStream()) {
+        var lost = new ArrayList<Outgoing>(out.size() + queue.size());
+        for (InFlight entry : out.reset()) {
             lost.add(entry.outgoing());
         }
         lost.addAll(queue.drain());
@@ -672,28 +570,11 @@ final class Link {
         return lost;
     }
 
-    /**
-     * Starts the outbound stream afresh under a new id (the peer, when it sees the id, must not
-     * expect the old numbers) and returns the unacknowledged messages, whose fate is unknown.
-     */
-    private List<InFlight> resetStream() {
-        List<InFlight> lost = List.copyOf(inFlight);
-        inFlight.clear();
-        inFlightBytes = 0;
-        lowInFlightBytes = 0;
-        unackedSinceNs = 0;
-        streamId = NetworkContext.newStreamId();
-        nextSeq = 0;
-        ackedCount = 0;
-        return lost;
-    }
-
-
     /** Waiting messages, and written ones not yet acknowledged. */
     int[] backlog() {
         lock.lock();
         try {
-            return new int[] {queue.size(), inFlight.size()};
+            return new int[] {queue.size(), out.size()};
         } finally {
             lock.unlock();
         }
