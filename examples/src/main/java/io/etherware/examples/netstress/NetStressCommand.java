@@ -33,7 +33,7 @@ import picocli.CommandLine.Spec;
                     + " controller, so every control cycle crosses TCP on loopback twice. Each node runs a stress task"
                     + " on LOW Ticks (node 2's half a stress period after node 1's) and ordinary load threads. Twice: on the original Etherware (one FIFO dispatcher"
                     + " and ordinary network threads on both nodes) and on Etherware-RT (Table II dispatchers and"
-                    + " SCHED_FIFO network threads above the HIGH dispatcher). Prints a side-by-side table and writes"
+                    + " SCHED_FIFO network threads, the lane of HIGH messages above the HIGH dispatcher). Prints a side-by-side table and writes"
                     + " CSVs and PNG/SVG plots.",
             "Default: 20 s per run."},
         footer = {"", "Example: etherware-demo netstress --duration 30 --out /tmp/netstress"})

@@ -24,6 +24,9 @@ import org.slf4j.LoggerFactory;
  * goes to a log file; what it prints after {@code READY} is kept, for the scenario to read its
  * results from once it stopped.
  *
+ * <p>The node's JVM runs with this JVM's collector and heap options ({@link #MEMORY_OPTIONS}), so
+ * both nodes of a run collect garbage alike.
+ *
  * <p>Both JVMs run on one host and share its {@code CLOCK_MONOTONIC}, so times passed between them
  * (an origin, an event's time) need no translation. Used by one scenario thread; the process's
  * output is read by a thread of its own.
@@ -35,11 +38,25 @@ public final class NodeProcess implements AutoCloseable {
 
     private static final Logger LOG = LoggerFactory.getLogger(NodeProcess.class);
     private static final long STOP_TIMEOUT_S = 30;
+    /** The prefixes of this JVM's options that the node's JVM gets too: collector and heap. */
+    static final List<String> MEMORY_OPTIONS = List.of("-XX:+Use", "-XX:-Use", "-Xms", "-Xmx", "-Xmn",
+            "-XX:+AlwaysPreTouch", "-XX:MaxGCPauseMillis=", "-XX:SoftMaxHeapSize=");
 
     private final Process process;
     private final Path log;
     private final List<String> afterReady = new ArrayList<>();
     private final CompletableFuture<Void> outputEnded = new CompletableFuture<>();
+
+    /** Those of {@code jvmOptions} that name the collector or size the heap. */
+    static List<String> memoryOptions(List<String> jvmOptions) {
+        var chosen = new ArrayList<String>();
+        for (String option : jvmOptions) {
+            if (MEMORY_OPTIONS.stream().anyMatch(option::startsWith)) {
+                chosen.add(option);
+            }
+        }
+        return chosen;
+    }
 
     private NodeProcess(Process process, Path log) {
         this.process = process;
@@ -58,7 +75,9 @@ public final class NodeProcess implements AutoCloseable {
     public static NodeProcess start(List<String> arguments, Path log, long readyTimeoutS) throws IOException {
         String classPath = System.getProperty("surefire.test.class.path", System.getProperty("java.class.path"));
         List<String> command = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java")
-                .toString(), "--enable-native-access=ALL-UNNAMED", "-cp", classPath, EtherwareDemo.class.getName()));
+                .toString(), "--enable-native-access=ALL-UNNAMED"));
+        command.addAll(memoryOptions(java.lang.management.ManagementFactory.getRuntimeMXBean().getInputArguments()));
+        command.addAll(List.of("-cp", classPath, EtherwareDemo.class.getName()));
         command.addAll(arguments);
         Process process = new ProcessBuilder(command).redirectError(log.toFile()).start();
         var node = new NodeProcess(process, log);
