@@ -82,12 +82,14 @@
  * queued there, forwarded (acknowledged streams: no loss or duplicate while both nodes live),
  * or kept at the target. The source switches its registry only when no message for the component is
  * queued there (a counter per component, set atomically with the switch), so a sender at the source
- * whose later message goes straight to the target has had every earlier one forwarded first, into
- * the same FIFO stream. At the target, messages sent directly to the profile after the install are
+ * whose later message goes straight to the target has had every earlier one of the same urgency
+ * forwarded first, into the same FIFO stream (the network lane of that urgency). At the target, messages sent directly to the profile after the install are
  * <em>penned</em>: they sort behind the forwarded ones of the same urgency, which were sent earlier
  * (senders at the target reached the component through the source until the install). The
- * target answers the INSTALL at the lowest criticality, so its link's queue sends the answer after
- * every message its senders sent to the component through the source before: the source has them,
+ * target answers the INSTALL at the lowest criticality, and the network sends a NONE message after
+ * every message queued for the same node before it, on every lane (NETWORK-PROTOCOL.md, "Priority
+ * on the wire"), so the answer arrives after every message its senders sent to the component
+ * through the source before: the source has them,
  * and forwards them, before it switches. The release waits for the forwarded count, because the
  * HANDOVER, sent at HIGH criticality, may overtake less critical forwarded messages in a
  * backlogged queue. Order is per sender and

@@ -28,11 +28,13 @@ import java.util.Optional;
  * }
  * }</pre>
  *
- * <p>What it does. Two TCP connections per pair of nodes, the lanes (when both dial, the
+ * <p>What it does. Two TCP connections per pair of nodes by default, the lanes (when both dial, the
  * connection dialed by the lower node id is kept), with TCP_NODELAY: lane 0 carries HIGH and
  * MIDDLE messages, lane 1 LOW and NONE, each with its own streams, queue and threads, so a HIGH
- * message never waits behind LOW bytes on the wire, and messages of one lane keep their order
- * (messages of different criticality never had one: the dispatchers reorder them too); frames of a length, a type and a body, the
+ * message never waits behind LOW bytes on the wire ({@link NetworkConfig#lanes()} 1: one
+ * connection). Messages of one lane keep their order, and a NONE message goes after everything
+ * queued before it for the same node; other messages of different lanes have no order between
+ * them (the dispatchers reorder by criticality anyway). Frames of a length, a type and a body, the
  * messages themselves as the XML of {@link io.etherware.core.codec.MessageCodec} (see
  * {@code NETWORK-PROTOCOL.md}). Each node announces the profiles it hosts when a connection opens
  * and whenever they change; the others register a route for each in their registry, so
@@ -102,7 +104,7 @@ public final class NetworkMessenger implements AutoCloseable {
         engine.addPeer(Objects.requireNonNull(address, "address"));
     }
 
-    /** Waits until a connection to node {@code nodeId} is up; false on timeout. */
+    /** Waits until node {@code nodeId} is connected, every lane; false on timeout. */
     public boolean awaitConnected(String nodeId, Duration timeout) throws InterruptedException {
         return engine.awaitConnected(nodeId, timeout);
     }

@@ -101,6 +101,30 @@ class NetworkLanesTest {
         }
     }
 
+    @Test
+    void shouldGiveUpALaneThatStaysDownWhileTheOtherIsUp() throws Exception {
+        Profile sink = Profile.of("r-sink");
+        try (var a = TestNode.start("a", TestNode.config().peerDownGrace(Duration.ofMillis(300)));
+             var bulk = new RawPeer(a.address())) {
+            bulk.hello(RawPeer.MAGIC, RawPeer.VERSION, "r", 1);
+            bulk.expect(RawPeer.HELLO);
+            bulk.expect(RawPeer.RESUME);
+            bulk.resume(7, 0, 0);
+            bulk.announce(0, "etherware.node[id=r]", "r-sink");
+            assertTrue(a.net.awaitResolvable(sink, Duration.ofSeconds(30)));
+            long startNs = System.nanoTime();
+            var request = a.node.request(sink, new Text("never answered"), HIGH, TimeUnit.SECONDS.toNanos(20));
+            var error = assertThrows(ExecutionException.class, () -> request.get(30, TimeUnit.SECONDS));
+            assertTrue(System.nanoTime() - startNs < TimeUnit.SECONDS.toNanos(10),
+                    "its sender heard of it after the grace period, not at its own timeout: " + error.getCause());
+            a.node.send(sink, new Text("behind"), QoS.of(Criticality.NONE));
+            RawPeer.Received behind = dataWithin(bulk, 10_000);
+            assertTrue(behind != null && RawPeer.dataXml(behind).contains("behind"),
+                    "a NONE message no longer waits for the lane given up");
+            assertTrue(a.net.stats().undeliverable() >= 1, a.net.stats().toString());
+        }
+    }
+
     /** The first DATA frame {@code peer} reads within {@code ms}, or null. */
     private static RawPeer.Received dataWithin(RawPeer peer, long ms) throws java.io.IOException {
         long endNs = System.nanoTime() + TimeUnit.MILLISECONDS.toNanos(ms);

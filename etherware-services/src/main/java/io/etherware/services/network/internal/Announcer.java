@@ -19,7 +19,7 @@ import java.util.TreeSet;
  * so a peer can always route the reply to a request.
  *
  * <p>Thread-safety: the registry calls {@link #onChanged} within its serialized changes; the
- * announced set is guarded by this object; lock order is registry, this, then a peer's lock.
+ * announced set is guarded by this object; lock order is registry, this, then a link's lock.
  */
 final class Announcer implements ProfileRegistry.Listener {
 

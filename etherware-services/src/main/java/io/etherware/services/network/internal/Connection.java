@@ -16,12 +16,12 @@ import javax.net.ssl.SSLException;
 /**
  * One TCP connection to another node: the handshake, then a reader (the thread that ran the
  * handshake) and a writer thread. The reader hands messages to the kernel in stream order and
- * answers control frames through the writer; the writer sends what the {@link Peer} has, most
+ * answers control frames through the writer; the writer sends what its lane's {@link Link} has, most
  * critical first, and flushes once per turn, so a burst leaves in few system calls.
  *
  * <p>A dead or slow peer blocks only this connection's two threads; senders only ever queue.
  *
- * <p>Thread-safety: the writer requests are guarded by the peer's lock; {@link #close} may be
+ * <p>Thread-safety: the writer requests are guarded by the link's lock; {@link #close} may be
  * called from any thread, once takes effect.
  */
 final class Connection implements Runnable {
@@ -59,7 +59,7 @@ final class Connection implements Runnable {
     /** Guarded by this: {@link #close} runs once. */
     private boolean closed;
 
-    /** What the writer is asked to send besides messages; guarded by the peer's lock. */
+    /** What the writer is asked to send besides messages; guarded by the link's lock. */
     final WriterRequests requests = new WriterRequests();
 
     /** The output side, once the handshake has written its frames. */
@@ -184,7 +184,7 @@ final class Connection implements Runnable {
                     case Frame.Heartbeat heartbeat -> { }
                     case Frame.Announce announced -> {
                         if (link.active() == this) {
-                            events.announced(peer, announced);
+                            events.announced(peer, hello.incarnation(), announced);
                         }
                     }
                     case Frame.TimeRequest request -> requestTimeReply(request.t1(), context.kernel().clock().epochNanos());

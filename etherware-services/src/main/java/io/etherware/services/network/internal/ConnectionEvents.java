@@ -19,8 +19,8 @@ interface ConnectionEvents {
     /** The routes or connections changed: wake whoever waits for them. */
     void stateChanged();
 
-    /** The active connection of one of the peer's lanes brought an ANNOUNCE. */
-    void announced(Peer peer, Frame.Announce announce);
+    /** The active connection of one of the peer's lanes, of the peer's {@code incarnation}, brought an ANNOUNCE. */
+    void announced(Peer peer, long incarnation, Frame.Announce announce);
 
     /** The peer said BYE SHUTDOWN on its lane's connection. */
     void peerShutDown(Peer peer);

@@ -123,17 +123,21 @@ final class ConnectionOutput {
     /** Numbers and writes new messages (encoded by their senders); reports those that cannot go. */
     private boolean writeFresh(Connection connection, List<Outgoing> fresh, long ackNow) throws IOException {
         var encoded = new ArrayList<Outgoing>(fresh.size());
+        var tooLarge = new ArrayList<Outgoing>();
         for (Outgoing outgoing : fresh) {
             int frameBytes = outgoing.xml().length + Frame.DATA_OVERHEAD_BYTES;
             if (frameBytes <= peerMaxFrameBytes) {
                 encoded.add(outgoing);
             } else {
-                // Queued before this peer said its limit, which is below this node's own.
-                context.losses().lost(outgoing.message(), "its frame of " + frameBytes + " bytes is over the "
-                        + peerMaxFrameBytes + " bytes node '" + peerId + "' accepts");
+                tooLarge.add(outgoing); // queued before this peer said its limit, below this node's own
             }
         }
-        List<InFlight> assigned = link.assign(connection, encoded);
+        List<InFlight> assigned = link.assign(connection, encoded, tooLarge);
+        for (Outgoing outgoing : tooLarge) {
+            context.losses().lost(outgoing.message(), "its frame of " + (outgoing.xml().length
+                    + Frame.DATA_OVERHEAD_BYTES) + " bytes is over the " + peerMaxFrameBytes + " bytes node '" + peerId
+                    + "' accepts");
+        }
         if (assigned == null) {
             return false;
         }
@@ -175,7 +179,7 @@ final class ConnectionOutput {
     }
 
     /**
-     * Every message frame written so far is acknowledged (peer's lock held): the peer has read
+     * Every message frame written so far is acknowledged (link's lock held): the peer has read
      * the stream up to the last of them. A frame still being written ends later, so this errs
      * on the safe side.
      */

@@ -290,8 +290,8 @@ public final class Engine {
         }
 
         @Override
-        public void announced(Peer peer, Frame.Announce announce) {
-            peer.onAnnounce(announce.version(), () -> routes.announce(peer, announce.profiles()));
+        public void announced(Peer peer, long incarnation, Frame.Announce announce) {
+            peer.onAnnounce(incarnation, announce.version(), () -> routes.announce(peer, announce.profiles()));
             signalStateChanged();
         }
 
@@ -330,7 +330,7 @@ public final class Engine {
     private boolean activate(Connection connection, Frame.Hello hello, Frame.Resume theirs, long helloArrivedEpochNs) {
         Peer peer = connection.peer();
         Link link = connection.link();
-        Peer.Activation outcome = peer.activate(connection, hello, theirs, announcer.body());
+        Peer.Activation outcome = peer.activate(connection, hello, theirs, announcer::body);
         Link.Activation activation = outcome.link();
         if (!activation.accepted()) {
             context.losses().reportLost(activation.lost(), "the streams with node '" + peer.nodeId
@@ -413,6 +413,10 @@ public final class Engine {
                 }
                 if (!up) {
                     expireIfDown(peer, nowNs);
+                } else {
+                    for (Link link : peer.links()) {
+                        reportLost(link.expireAlone(nowNs), peer, "its lane " + link.lane);
+                    }
                 }
             }
             Profile profile;
@@ -456,16 +460,24 @@ public final class Engine {
         if (lost == null) {
             return;
         }
-        log.warn("node {}: node '{}' has been unreachable for over {} ms: unrouting its profiles and reporting {}"
-                + " waiting messages as undeliverable", nodeId, peer.nodeId,
-                TimeUnit.NANOSECONDS.toMillis(config.peerDownGraceNs()), lost.size());
         routes.forget(peer);
         peers.remove(peer.nodeId, peer);
+        reportLost(lost, peer, "unrouting its profiles");
+        signalStateChanged();
+    }
+
+    /** Logs and reports to their senders messages given up for a peer unreachable for the grace period. */
+    private void reportLost(List<Outgoing> lost, Peer peer, String what) {
+        if (lost == null) {
+            return;
+        }
+        long graceMs = TimeUnit.NANOSECONDS.toMillis(config.peerDownGraceNs());
+        log.warn("node {}: node '{}' has been unreachable for over {} ms ({}): reporting {} waiting messages as"
+                + " undeliverable", nodeId, peer.nodeId, graceMs, what, lost.size());
         for (Outgoing each : lost) {
             context.losses().lost(each.message(), "node '" + peer.nodeId + "' has been unreachable for over "
-                    + TimeUnit.NANOSECONDS.toMillis(config.peerDownGraceNs()) + " ms");
+                    + graceMs + " ms");
         }
-        signalStateChanged();
     }
 
     // ---------------------------------------------------------------- status
@@ -501,7 +513,7 @@ public final class Engine {
                 backlog[0], backlog[1], routes.hostedBy(peer.nodeId), networkTime.peer(peer.nodeId));
     }
 
-    /** Waits until a connection to {@code peerId} is up; false on timeout. */
+    /** Waits until every lane to {@code peerId} is connected; false on timeout. */
     public boolean awaitConnected(String peerId, Duration timeout) throws InterruptedException {
         return await(timeout, () -> isConnected(peerId));
     }

@@ -30,6 +30,9 @@ import java.util.concurrent.locks.ReentrantLock;
  */
 final class Link {
 
+    /** How often a writer looks again at a NONE message held for lane 0 (see {@link Generations}). */
+    private static final long BARRIER_POLL_NS = TimeUnit.MILLISECONDS.toNanos(1);
+
     final String nodeId;
     /** Which lane of the peer this is. */
     final int lane;
@@ -42,8 +45,8 @@ final class Link {
     private final NetworkContext context;
     /** Lane 0's link, whose earlier messages a NONE message of this lane waits for; null on lane 0. */
     private final Link precedent;
-    /** Lane 1's link, woken when this one's acknowledgements may let its NONE messages go; set once. */
-    volatile Link follower;
+    /** This lane's unsettled messages by generation (guarded by lock). */
+    private final Generations generations = new Generations();
 
     // Guarded by lock.
     private final OutboundQueue queue;
@@ -68,7 +71,7 @@ final class Link {
         this.lane = lane;
         this.context = context;
         this.precedent = precedent;
-        this.out = new OutboundStream(context.lanes().size() == 1);
+        this.out = new OutboundStream(context.lanes().size() == 1, generations);
         this.queue = new OutboundQueue(context.config().queueCapacity());
         this.downSinceNs = NetworkContext.nowNs();
     }
@@ -94,7 +97,6 @@ final class Link {
         Connection direct = active;
         // Encoded here, on the sender's thread: its size counts against the peer's byte bound.
         byte[] xml = encode(message, direct);
-        var outgoing = new Outgoing(message, hops, xml, after);
         OutboundQueue.Outcome outcome = null;
         InFlight written = null;
         lock.lock();
@@ -107,6 +109,7 @@ final class Link {
                         + TimeUnit.NANOSECONDS.toMillis(context.config().peerDownGraceNs()) + " ms");
             }
             long maxBytes = context.config().maxQueuedBytesPerPeer();
+            var outgoing = new Outgoing(message, hops, xml, after, generations.take());
             if (direct != null && active == direct && !writerBusy && queue.isEmpty()
                     && !direct.requests.mustPrecedeMessages() && out.size() < context.config().windowMessages()
                     && out.bytes() + xml.length <= maxBytes && out.lowRoomFor(outgoing, 0) && mayGo(outgoing)
@@ -116,6 +119,11 @@ final class Link {
             } else {
                 outcome = queue.offer(outgoing, maxBytes - out.bytes());
                 queuedHint = queue.size();
+                switch (outcome) {
+                    case OutboundQueue.Outcome.Evicted evicted -> evicted.evicted().forEach(this::settle);
+                    case OutboundQueue.Outcome.Full full -> settle(outgoing);
+                    default -> { }
+                }
                 if (!(outcome instanceof OutboundQueue.Outcome.Full)) {
                     work.signal();
                 }
@@ -229,7 +237,7 @@ final class Link {
      *
      * A peer claiming more of our stream than was sent is refused, and our stream starts afresh.
      */
-    Activation activate(Connection candidate, Frame.Resume theirs, byte[] announceBody) {
+    Activation activate(Connection candidate, Frame.Resume theirs, java.util.function.Supplier<byte[]> announceBody) {
         synchronized (inbound) {
             lock.lock();
             try {
@@ -273,7 +281,8 @@ final class Link {
                 active = candidate;
                 expired = false;
                 out.restartClock();
-                candidate.requests.announce(announceBody);
+                // Read under the lock: an announcement published meanwhile finds this connection active.
+                candidate.requests.announce(announceBody.get());
                 work.signalAll();
                 return new Activation(true, loser, lost, null);
             } finally {
@@ -330,11 +339,14 @@ final class Link {
                     return last;
                 }
                 Outgoing head = queue.peek();
-                boolean sendable = head != null && out.size() < window && out.lowRoomFor(head, 0) && mayGo(head);
+                boolean held = head != null && !mayGo(head);
+                boolean sendable = head != null && out.size() < window && out.lowRoomFor(head, 0) && !held;
                 if (!connection.requests.hasRequests() && !sendable) {
                     long waitNs = connection.output().heartbeatDueNs() - NetworkContext.nowNs();
                     if (waitNs > 0) {
-                        work.awaitNanos(waitNs);
+                        // A NONE message held for lane 0 is looked at again every millisecond:
+                        // lane 0 never signals this lane, so its threads never take this lock.
+                        work.awaitNanos(held ? Math.min(waitNs, BARRIER_POLL_NS) : waitNs);
                         continue;
                     }
                     connection.requests.requestHeartbeat();
@@ -371,10 +383,12 @@ final class Link {
     /**
      * Numbers the encoded messages of a turn and keeps them until acknowledged; null if the
      * connection is no longer the peer's, in which case they go back to the front of the queue.
+     * {@code givenUp} are messages of the turn that cannot go (reported lost by the caller).
      */
-    List<InFlight> assign(Connection connection, List<Outgoing> encoded) {
+    List<InFlight> assign(Connection connection, List<Outgoing> encoded, List<Outgoing> givenUp) {
         lock.lock();
         try {
+            givenUp.forEach(this::settle);
             if (active != connection) {
                 queue.pushBack(encoded);
                 queuedHint = queue.size();
@@ -392,44 +406,31 @@ final class Link {
     }
 
     /**
-     * The barrier for a NONE message of lane 1 queued now (see {@link Peer#enqueue}): this lane's
-     * messages numbered or queued so far. Counting every queued one by number errs on the late side
-     * (a HIGH message queued later may be numbered first); {@link #hasPassed} also accepts a drained
-     * lane, so the wait always ends.
+     * Closes this lane's open generation for a NONE message of lane 1 queued now (see {@link
+     * Peer#enqueue}): it goes once every message taken here before it is settled.
      */
-    long barrier() {
+    long closeGeneration() {
         lock.lock();
         try {
-            return out.nextSeq() + queue.size();
+            return generations.close();
         } finally {
             lock.unlock();
         }
     }
 
-    /**
-     * Whether the peer has acknowledged {@code count} messages of this lane's stream, or nothing
-     * is queued or unacknowledged here. Reads volatile state only: lane 1 asks it with its own lock
-     * held, and never takes this link's lock.
-     */
-    boolean hasPassed(long count) {
-        return out.ackedCount() >= count || queuedHint == 0 && out.unackedSinceNs() == 0;
+    /** Whether every message of {@code generation} and before is settled here. Lock-free. */
+    boolean hasSettled(long generation) {
+        return generations.settledUpTo(generation);
     }
 
     /** Whether a NONE message waiting for lane 0 may go (lock held). */
     private boolean mayGo(Outgoing next) {
-        return next.after() < 0 || precedent == null || precedent.hasPassed(next.after());
+        return next.after() < 0 || precedent == null || precedent.hasSettled(next.after());
     }
 
-    /** Lane 0 made progress: a writer waiting for it to let a NONE message go may have work. */
-    private void wake() {
-        lock.lock();
-        try {
-            if (!queue.isEmpty()) {
-                work.signal();
-            }
-        } finally {
-            lock.unlock();
-        }
+    /** {@code outgoing} leaves this lane for good without having been written (lock held). */
+    private void settle(Outgoing outgoing) {
+        generations.settle(outgoing.generation());
     }
 
     /**
@@ -469,10 +470,6 @@ final class Link {
         if (error != null) {
             // Reported once the connection is closed: notices to the peer then wait for the next one.
             throw new StreamResetException(error, lost);
-        }
-        Link waiting = follower;
-        if (waiting != null) {
-            waiting.wake(); // after our lock: lane 1 never holds its lock while taking ours, nor we the reverse
         }
     }
 
@@ -548,6 +545,25 @@ final class Link {
         }
     }
 
+    /**
+     * This lane alone has been down longer than the grace period while another lane of the peer is
+     * up: its messages are given up (returned, for the caller to report) and new ones refused until
+     * it connects again, so its senders hear of it and lane 1's NONE messages stop waiting for it.
+     * Null if it is not newly so.
+     */
+    List<Outgoing> expireAlone(long nowNs) {
+        lock.lock();
+        try {
+            if (active != null || expired || closed || nowNs - downSinceNs < context.config().peerDownGraceNs()) {
+                return null;
+            }
+            expired = true;
+            return abandonAll();
+        } finally {
+            lock.unlock();
+        }
+    }
+
     /** The messenger closes: refuse new messages and return what waited. */
     List<Outgoing> close() {
         lock.lock();
@@ -565,7 +581,9 @@ final class Link {
         for (InFlight entry : out.reset()) {
             lost.add(entry.outgoing());
         }
-        lost.addAll(queue.drain());
+        List<Outgoing> waited = queue.drain();
+        waited.forEach(this::settle);
+        lost.addAll(waited);
         queuedHint = 0;
         return lost;
     }

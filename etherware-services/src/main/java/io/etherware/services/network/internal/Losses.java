@@ -15,7 +15,7 @@ import org.slf4j.LoggerFactory;
  * it (the sender of a message; for a reply, the requester), or sheds it (NONE, LOW from a full
  * queue), so that no request hangs until its timeout for a loss the messenger knows of.
  *
- * <p>Thread-safety: any thread; never called with a peer's lock held (it sends through the kernel).
+ * <p>Thread-safety: any thread; never called with a link's lock held (it sends through the kernel).
  */
 final class Losses {
 

@@ -8,7 +8,7 @@ import java.util.List;
  * The messages waiting for one peer: most critical first, first in first out within a level,
  * bounded. When full, the least critical waiting message makes room for a more critical one.
  *
- * <p>Not thread-safe: the {@link Peer}'s lock guards it.
+ * <p>Not thread-safe: its {@link Link}'s lock guards it.
  */
 final class OutboundQueue {
 

@@ -25,6 +25,8 @@ final class OutboundStream {
 
     /** Whether NONE and LOW messages in flight are bounded ({@link #LOW_IN_FLIGHT_BYTES}). */
     private final boolean boundsLow;
+    /** Where a message is settled when it leaves the stream (acknowledged, refused, given up). */
+    private final Generations generations;
     private final ArrayDeque<InFlight> inFlight = new ArrayDeque<>();
     private long streamId = NetworkContext.newStreamId();
     private long nextSeq;
@@ -36,8 +38,9 @@ final class OutboundStream {
     /** Since when something written is unacknowledged with no acknowledgement progress; 0: nothing. */
     private volatile long unackedSinceNs;
 
-    OutboundStream(boolean boundsLow) {
+    OutboundStream(boolean boundsLow, Generations generations) {
         this.boundsLow = boundsLow;
+        this.generations = generations;
     }
 
     long streamId() {
@@ -169,6 +172,9 @@ final class OutboundStream {
      */
     List<InFlight> restartNumbering() {
         List<InFlight> lost = List.copyOf(inFlight);
+        for (InFlight entry : lost) {
+            generations.settle(entry.outgoing().generation());
+        }
         inFlight.clear();
         inFlightBytes = 0;
         lowInFlightBytes = 0;
@@ -194,6 +200,7 @@ final class OutboundStream {
     }
 
     private void removed(InFlight entry) {
+        generations.settle(entry.outgoing().generation());
         inFlightBytes -= entry.xml().length;
         if (entry.outgoing().isSheddable()) {
             lowInFlightBytes -= entry.xml().length;

@@ -11,8 +11,9 @@ import java.util.List;
  * A message goes to the link of its criticality's lane.
  *
  * <p>Thread-safety: {@link #enqueue} from any thread without this object's monitor; activation,
- * expiry and announcements are serialized on it (lock order: this, then a link's locks, then the
- * route table).
+ * expiry and announcements are serialized on it. Lock order: this, then a link's inbound stream and
+ * lock (activation), or this, then the route table, the registry and the announcer, which takes a
+ * link's lock (an announcement); nothing takes this monitor holding any of them.
  */
 final class Peer {
 
@@ -31,21 +32,19 @@ final class Peer {
         for (int lane = 0; lane < links.length; lane++) {
             links[lane] = new Link(nodeId, lane, context, lane == 0 ? null : links[0]);
         }
-        if (links.length > 1) {
-            links[0].follower = links[1];
-        }
     }
 
     /**
      * Takes a message for this node, on its lane; see {@link Link#enqueue}. A NONE message goes
      * after every message queued for the node before it, on either lane, as on one connection: the
      * lowest criticality is the one that waits behind everything (the migration protocol counts on
-     * it: see {@code ManagementService}). On lane 1 it therefore waits until lane 0 has had what was
-     * queued there before it acknowledged, or has drained.
+     * it: see {@code ManagementService}). On lane 1 it therefore waits until every message lane 0
+     * took before it is settled: acknowledged by the peer, or given up for good (see {@link
+     * Generations}).
      */
     void enqueue(Message message) {
         int lane = context.laneOf(message.qos().criticality());
-        long after = lane == 1 && message.qos().criticality() == Criticality.NONE ? links[0].barrier() : -1;
+        long after = lane == 1 && message.qos().criticality() == Criticality.NONE ? links[0].closeGeneration() : -1;
         links[lane].enqueue(message, after);
     }
 
@@ -77,7 +76,7 @@ final class Peer {
      * expired meanwhile. {@code restarted} in the outcome: the node came back with a new incarnation.
      */
     synchronized Activation activate(Connection candidate, Frame.Hello hello, Frame.Resume theirs,
-                                     byte[] announceBody) {
+                                     java.util.function.Supplier<byte[]> announceBody) {
         if (retired) {
             return new Activation(new Link.Activation(false, candidate, List.of(), null), false);
         }
@@ -98,12 +97,14 @@ final class Peer {
     }
 
     /**
-     * Whether an ANNOUNCE of {@code version} is newer than the last one applied (each lane carries
-     * every announcement, ahead of its own messages; the first copy to arrive is applied, so the
-     * routes a message needs are in place whichever lane brings it). Runs {@code apply} if so.
+     * Whether an ANNOUNCE of {@code version}, from a connection of the node's current incarnation,
+     * is newer than the last one applied (each lane carries every announcement, ahead of its own
+     * messages; the first copy to arrive is applied, so the routes a message needs are in place
+     * whichever lane brings it). Runs {@code apply} if so.
      */
-    synchronized void onAnnounce(long version, Runnable apply) {
-        if (version > announceVersion) {
+    synchronized void onAnnounce(long fromIncarnation, long version, Runnable apply) {
+        // One from a connection of the node's previous life (still being read) is stale.
+        if (!retired && fromIncarnation == incarnation && version > announceVersion) {
             announceVersion = version;
             apply.run();
         }

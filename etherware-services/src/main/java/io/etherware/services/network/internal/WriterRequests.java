@@ -9,7 +9,7 @@ import java.util.List;
  * announcements, heartbeats, time probes and replies, messages to send again, and at the end a
  * REJECT and the BYE. Each request is taken once, by {@link #takeRequests} or {@link #takeBye}.
  *
- * <p>Not thread-safe: guarded by the lock of the connection's {@link Peer}, with whose work
+ * <p>Not thread-safe: guarded by the lock of the connection's {@link Link}, with whose work
  * condition a request is signalled.
  */
 final class WriterRequests {

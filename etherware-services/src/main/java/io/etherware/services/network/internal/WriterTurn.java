@@ -4,7 +4,7 @@ import java.util.ArrayList;
 import java.util.List;
 
 /**
- * What a connection's writer does in one turn, taken under the peer's lock and then written
+ * What a connection's writer does in one turn, taken under the link's lock and then written
  * without it.
  *
  * <p>Not thread-safe: made by the writer for itself.

@@ -21,11 +21,11 @@ class OutboundQueueTest {
 
     private static Outgoing message(Criticality criticality) {
         return new Outgoing(new Message(Profile.of("x"), null, 0, QoS.of(criticality), new Text(criticality.name()),
-                new MessageId("a", sequence++), null), 0, new byte[100], -1);
+                new MessageId("a", sequence++), null), 0, new byte[100], -1, 0);
     }
 
     private static Outgoing sized(Criticality criticality, int bytes) {
-        return new Outgoing(message(criticality).message(), 0, new byte[bytes], -1);
+        return new Outgoing(message(criticality).message(), 0, new byte[bytes], -1, 0);
     }
 
     private static List<Outgoing> drain(OutboundQueue queue) {
