@@ -74,12 +74,7 @@ class NetworkLanesTest {
         try (var a = TestNode.start("a", TestNode.config());
              var bulk = new RawPeer(a.address())) {
             // Peer r connects its lane 1 only: a's lane 0 to r is down, so what a queues there waits.
-            bulk.hello(RawPeer.MAGIC, RawPeer.VERSION, "r", 1);
-            bulk.expect(RawPeer.HELLO);
-            bulk.expect(RawPeer.RESUME);
-            bulk.resume(7, 0, 0);
-            bulk.announce(0, "etherware.node[id=r]", "r-sink");
-            assertTrue(a.net.awaitResolvable(sink, Duration.ofSeconds(30)));
+            connectLaneOneOnly(bulk, a, sink);
             a.node.send(sink, new Text("first"), HIGH);
             a.node.send(sink, new Text("behind"), QoS.of(Criticality.NONE));
 
@@ -106,12 +101,7 @@ class NetworkLanesTest {
         Profile sink = Profile.of("r-sink");
         try (var a = TestNode.start("a", TestNode.config().peerDownGrace(Duration.ofMillis(300)));
              var bulk = new RawPeer(a.address())) {
-            bulk.hello(RawPeer.MAGIC, RawPeer.VERSION, "r", 1);
-            bulk.expect(RawPeer.HELLO);
-            bulk.expect(RawPeer.RESUME);
-            bulk.resume(7, 0, 0);
-            bulk.announce(0, "etherware.node[id=r]", "r-sink");
-            assertTrue(a.net.awaitResolvable(sink, Duration.ofSeconds(30)));
+            connectLaneOneOnly(bulk, a, sink);
             long startNs = System.nanoTime();
             var request = a.node.request(sink, new Text("never answered"), HIGH, TimeUnit.SECONDS.toNanos(20));
             var error = assertThrows(ExecutionException.class, () -> request.get(30, TimeUnit.SECONDS));
@@ -123,6 +113,16 @@ class NetworkLanesTest {
                     "a NONE message no longer waits for the lane given up");
             assertTrue(a.net.stats().undeliverable() >= 1, a.net.stats().toString());
         }
+    }
+
+    /** Peer r connects only its lane 1 to {@code a} and announces {@code sink}. */
+    private static void connectLaneOneOnly(RawPeer bulk, TestNode a, Profile sink) throws Exception {
+        bulk.hello(RawPeer.MAGIC, RawPeer.VERSION, "r", 1);
+        bulk.expect(RawPeer.HELLO);
+        bulk.expect(RawPeer.RESUME);
+        bulk.resume(7, 0, 0);
+        bulk.announce(0, "etherware.node[id=r]", sink.toString());
+        assertTrue(a.net.awaitResolvable(sink, Duration.ofSeconds(30)));
     }
 
     /** The first DATA frame {@code peer} reads within {@code ms}, or null. */
