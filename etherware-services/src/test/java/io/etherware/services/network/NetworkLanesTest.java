@@ -99,19 +99,19 @@ class NetworkLanesTest {
     @Test
     void shouldGiveUpALaneThatStaysDownWhileTheOtherIsUp() throws Exception {
         Profile sink = Profile.of("r-sink");
-        try (var a = TestNode.start("a", TestNode.config().peerDownGrace(Duration.ofMillis(300)));
+        try (var a = TestNode.start("a", TestNode.config().peerDownGrace(Duration.ofMillis(1500)));
              var bulk = new RawPeer(a.address())) {
             connectLaneOneOnly(bulk, a, sink);
             long startNs = System.nanoTime();
             var request = a.node.request(sink, new Text("never answered"), HIGH, TimeUnit.SECONDS.toNanos(20));
             var error = assertThrows(ExecutionException.class, () -> request.get(30, TimeUnit.SECONDS));
-            assertTrue(System.nanoTime() - startNs < TimeUnit.SECONDS.toNanos(10),
-                    "its sender heard of it after the grace period, not at its own timeout: " + error.getCause());
+            assertTrue(System.nanoTime() - startNs < TimeUnit.SECONDS.toNanos(12),
+                    "its sender heard of it after the grace period (1.5 s), not at its own timeout (20 s): "
+                            + error.getCause());
             a.node.send(sink, new Text("behind"), QoS.of(Criticality.NONE));
             RawPeer.Received behind = dataWithin(bulk, 10_000);
             assertTrue(behind != null && RawPeer.dataXml(behind).contains("behind"),
                     "a NONE message no longer waits for the lane given up");
-            assertTrue(a.net.stats().undeliverable() >= 1, a.net.stats().toString());
         }
     }
 

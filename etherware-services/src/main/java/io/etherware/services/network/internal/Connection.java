@@ -182,6 +182,7 @@ final class Connection implements Runnable {
                     case Frame.Data data -> onData(data);
                     case Frame.Ack ack -> link.onAck(this, ack.count());
                     case Frame.Heartbeat heartbeat -> { }
+                    case Frame.Sync sync -> requestAck(); // every DATA before it is delivered
                     case Frame.Announce announced -> {
                         if (link.active() == this) {
                             events.announced(peer, hello.incarnation(), announced);

@@ -71,6 +71,10 @@ final class ConnectionOutput {
     }
 
     private void writeTurn(Connection connection, WriterTurn turn) throws IOException {
+        // The turn's new messages are numbered before anything is written: kept in flight from
+        // here on, they are sent again on the next connection if a write below fails, instead of
+        // being in neither the queue nor the stream.
+        List<InFlight> fresh = turn.fresh.isEmpty() ? List.of() : assign(connection, turn.fresh);
         long ackNow = link.inboundCount();
         boolean carriedAck = false;
         if (turn.reject != null) {
@@ -87,8 +91,16 @@ final class ConnectionOutput {
         if (carriedAck) {
             lastDataEndOffset = writer.bytes();
         }
-        if (!turn.fresh.isEmpty()) {
-            carriedAck |= writeFresh(connection, turn.fresh, ackNow);
+        if (!fresh.isEmpty()) {
+            for (InFlight entry : fresh) {
+                writer.data(entry.seq(), ackNow, entry.outgoing().hops(), entry.xml());
+            }
+            lastDataEndOffset = writer.bytes();
+            context.counters().sent.add(fresh.size());
+            carriedAck = true;
+        }
+        if (turn.sync) {
+            writer.sync(); // after the messages a NONE message of lane 1 waits for
         }
         if (turn.ack && !carriedAck) {
             writer.ack(ackNow);
@@ -120,13 +132,16 @@ final class ConnectionOutput {
         lastWriteNs = NetworkContext.nowNs();
     }
 
-    /** Numbers and writes new messages (encoded by their senders); reports those that cannot go. */
-    private boolean writeFresh(Connection connection, List<Outgoing> fresh, long ackNow) throws IOException {
-        var encoded = new ArrayList<Outgoing>(fresh.size());
+    /**
+     * Numbers a turn's new messages (encoded by their senders) and keeps them in flight; reports
+     * those that cannot go. Empty if the connection is no longer its lane's (they went back to the
+     * queue).
+     */
+    private List<InFlight> assign(Connection connection, List<Outgoing> taken) {
+        var encoded = new ArrayList<Outgoing>(taken.size());
         var tooLarge = new ArrayList<Outgoing>();
-        for (Outgoing outgoing : fresh) {
-            int frameBytes = outgoing.xml().length + Frame.DATA_OVERHEAD_BYTES;
-            if (frameBytes <= peerMaxFrameBytes) {
+        for (Outgoing outgoing : taken) {
+            if (outgoing.xml().length + Frame.DATA_OVERHEAD_BYTES <= peerMaxFrameBytes) {
                 encoded.add(outgoing);
             } else {
                 tooLarge.add(outgoing); // queued before this peer said its limit, below this node's own
@@ -138,15 +153,7 @@ final class ConnectionOutput {
                     + Frame.DATA_OVERHEAD_BYTES) + " bytes is over the " + peerMaxFrameBytes + " bytes node '" + peerId
                     + "' accepts");
         }
-        if (assigned == null) {
-            return false;
-        }
-        for (InFlight entry : assigned) {
-            writer.data(entry.seq(), ackNow, entry.outgoing().hops(), entry.xml());
-        }
-        lastDataEndOffset = writer.bytes();
-        context.counters().sent.add(assigned.size());
-        return !assigned.isEmpty();
+        return assigned == null ? List.of() : assigned;
     }
 
     /**

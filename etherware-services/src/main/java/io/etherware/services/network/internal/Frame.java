@@ -26,6 +26,7 @@ sealed interface Frame {
     byte TIME_REPLY = 8;
     byte REJECT = 9;
     byte BYE = 10;
+    byte SYNC = 11;
 
     /** Largest HELLO or RESUME: a peer that sends more before the handshake is not a peer. */
     int MAX_HANDSHAKE_FRAME_BYTES = 1024;
@@ -67,6 +68,9 @@ sealed interface Frame {
     }
 
     enum Heartbeat implements Frame { INSTANCE }
+
+    /** Acknowledge at once everything received so far (a NONE message of the other lane waits for it). */
+    enum Sync implements Frame { INSTANCE }
 
     /** The full set of profiles the sender hosts, replacing any earlier announce. */
     record Announce(long version, List<Profile> profiles) implements Frame {

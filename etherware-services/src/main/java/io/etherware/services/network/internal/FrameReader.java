@@ -122,6 +122,10 @@ final class FrameReader {
                     exactly(bodyBytes, 0, "HEARTBEAT");
                     yield Frame.Heartbeat.INSTANCE;
                 }
+                case Frame.SYNC -> {
+                    exactly(bodyBytes, 0, "SYNC");
+                    yield Frame.Sync.INSTANCE;
+                }
                 case Frame.TIME_REQUEST -> new Frame.TimeRequest(exactly(bodyBytes, 8, "TIME_REQUEST").getLong());
                 case Frame.TIME_REPLY -> {
                     ByteBuffer body = exactly(bodyBytes, 24, "TIME_REPLY");

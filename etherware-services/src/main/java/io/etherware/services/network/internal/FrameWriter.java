@@ -59,6 +59,10 @@ final class FrameWriter {
         out.writeLong(count);
     }
 
+    void sync() throws IOException {
+        begin(Frame.SYNC, 0);
+    }
+
     void heartbeat() throws IOException {
         begin(Frame.HEARTBEAT, 0);
     }

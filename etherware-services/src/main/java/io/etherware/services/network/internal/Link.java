@@ -47,6 +47,8 @@ final class Link {
     private final Link precedent;
     /** This lane's unsettled messages by generation (guarded by lock). */
     private final Generations generations = new Generations();
+    /** The latest generation a NONE message of lane 1 waits for, until settled; -1: none (guarded by lock). */
+    private long syncUpTo = -1;
 
     // Guarded by lock.
     private final OutboundQueue queue;
@@ -373,6 +375,13 @@ final class Link {
                 turn.fresh.add(queue.poll());
             }
             queuedHint = queue.size();
+            if (syncUpTo >= 0) {
+                if (generations.settledUpTo(syncUpTo)) {
+                    syncUpTo = -1;
+                } else if (!turn.fresh.isEmpty() || !turn.resend.isEmpty()) {
+                    turn.sync = true; // more of what the NONE message waits for goes out now
+                }
+            }
             writerBusy = true;
             return turn;
         } finally {
@@ -412,7 +421,18 @@ final class Link {
     long closeGeneration() {
         lock.lock();
         try {
-            return generations.close();
+            long closed = generations.close();
+            if (!generations.settledUpTo(closed)) {
+                // Its messages are settled when the peer acknowledges them, which it may put off
+                // for up to 10 ms: a SYNC after them asks it to at once.
+                syncUpTo = closed;
+                Connection connection = active;
+                if (connection != null) {
+                    connection.requests.requestSync();
+                    work.signal();
+                }
+            }
+            return closed;
         } finally {
             lock.unlock();
         }
@@ -529,15 +549,15 @@ final class Link {
      * The peer has been down longer than the grace period (its {@link Peer} decides): stop accepting
      * messages for it and retire this link (the messenger forgets the peer; a later connection
      * starts afresh), and return what waited, to report to the senders. Null if it is connected
-     * again or already expired.
+     * again or already retired.
      */
     List<Outgoing> expire() {
         lock.lock();
         try {
-            if (active != null || expired || closed) {
+            if (active != null || retired || closed) {
                 return null;
             }
-            expired = true;
+            expired = true; // perhaps already, alone: what was put back since is given up now
             retired = true;
             return abandonAll();
         } finally {
@@ -554,11 +574,13 @@ final class Link {
     List<Outgoing> expireAlone(long nowNs) {
         lock.lock();
         try {
-            if (active != null || expired || closed || nowNs - downSinceNs < context.config().peerDownGraceNs()) {
-                return null;
+            if (active != null || closed || nowNs - downSinceNs < context.config().peerDownGraceNs()
+                    || expired && queue.isEmpty() && out.isEmpty()) {
+                return null; // (messages a replaced writer put back after it expired are given up too)
             }
             expired = true;
-            return abandonAll();
+            List<Outgoing> lost = abandonAll();
+            return lost.isEmpty() ? null : lost;
         } finally {
             lock.unlock();
         }

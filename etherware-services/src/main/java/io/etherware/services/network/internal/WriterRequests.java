@@ -18,6 +18,7 @@ final class WriterRequests {
     private static final int MAX_TIME_REPLIES = 16;
 
     private boolean ackRequested;
+    private boolean syncRequested;
     private byte[] announce;
     private boolean heartbeatRequested;
     private boolean probeRequested;
@@ -29,7 +30,7 @@ final class WriterRequests {
     private int resendIndex;
 
     boolean hasRequests() {
-        return ackRequested || announce != null || heartbeatRequested || probeRequested || !timeReplies.isEmpty()
+        return ackRequested || syncRequested || announce != null || heartbeatRequested || probeRequested || !timeReplies.isEmpty()
                 || reject != null || resendIndex < resend.size();
     }
 
@@ -40,6 +41,11 @@ final class WriterRequests {
      */
     boolean mustPrecedeMessages() {
         return announce != null || resendIndex < resend.size();
+    }
+
+    /** Ask the peer to acknowledge at once what it has (a SYNC after the turn's messages). */
+    void requestSync() {
+        syncRequested = true;
     }
 
     void requestAck() {
@@ -91,6 +97,8 @@ final class WriterRequests {
     WriterTurn takeRequests(int batch) {
         var turn = new WriterTurn();
         turn.ack = ackRequested;
+        turn.sync = syncRequested;
+        syncRequested = false;
         turn.announce = announce;
         turn.heartbeat = heartbeatRequested;
         turn.probe = probeRequested;

@@ -14,6 +14,8 @@ final class WriterTurn {
     boolean ack;
     byte[] announce;
     boolean heartbeat;
+    /** Ask the peer to acknowledge at once, after this turn's messages. */
+    boolean sync;
     boolean probe;
     /** Time requests to answer: each {t1, t2}. */
     final List<long[]> timeReplies = new ArrayList<>(2);

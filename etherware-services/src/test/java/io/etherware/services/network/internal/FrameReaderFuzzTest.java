@@ -73,6 +73,7 @@ class FrameReaderFuzzTest {
             case Frame.Data data -> writer.data(data.seq(), data.ack(), data.hops(), data.xml());
             case Frame.Ack ack -> writer.ack(ack.count());
             case Frame.Heartbeat heartbeat -> writer.heartbeat();
+            case Frame.Sync sync -> writer.sync();
             case Frame.Announce announce -> writer.announce(FrameWriter.announceBody(announce.version(),
                     announce.profiles()));
             case Frame.TimeRequest request -> writer.timeRequest(request.t1());
