@@ -405,6 +405,11 @@ final class Connection implements Runnable {
         return link;
     }
 
+    /** The writer thread, once the connection is established. */
+    Thread writerThread() {
+        return writerThread;
+    }
+
     /** The output side (null before the handshake wrote its frames). */
     ConnectionOutput output() {
         return output;

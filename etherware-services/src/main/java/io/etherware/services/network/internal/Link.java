@@ -49,6 +49,10 @@ final class Link {
     private final Generations generations = new Generations();
     /** The latest generation a NONE message of lane 1 waits for, until settled; -1: none (guarded by lock). */
     private long syncUpTo = -1;
+    /** Lane 1's link, nudged when an acknowledgement here may let its held NONE message go; set once. */
+    volatile Link follower;
+    /** This lane's writer waits with a NONE message held for lane 0 at the head of its queue. */
+    private volatile boolean holdsNone;
 
     // Guarded by lock.
     private final OutboundQueue queue;
@@ -342,6 +346,7 @@ final class Link {
                 }
                 Outgoing head = queue.peek();
                 boolean held = head != null && !mayGo(head);
+                holdsNone = held;
                 boolean sendable = head != null && out.size() < window && out.lowRoomFor(head, 0) && !held;
                 if (!connection.requests.hasRequests() && !sendable) {
                     long waitNs = connection.output().heartbeatDueNs() - NetworkContext.nowNs();
@@ -490,6 +495,23 @@ final class Link {
         if (error != null) {
             // Reported once the connection is closed: notices to the peer then wait for the next one.
             throw new StreamResetException(error, lost);
+        }
+        Link waiting = follower;
+        if (waiting != null) {
+            waiting.nudge();
+        }
+    }
+
+    /**
+     * Lane 0 settled messages: if this lane's writer holds a NONE message for it, it looks again
+     * now rather than at its next 1 ms poll. Takes no lock (an unpark: the writer's wait loop
+     * takes an early return as a reason to look again).
+     */
+    private void nudge() {
+        Connection connection = active;
+        Thread writer = connection == null ? null : connection.writerThread();
+        if (holdsNone && writer != null) {
+            java.util.concurrent.locks.LockSupport.unpark(writer);
         }
     }
 

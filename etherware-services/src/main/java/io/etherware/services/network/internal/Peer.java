@@ -32,6 +32,9 @@ final class Peer {
         for (int lane = 0; lane < links.length; lane++) {
             links[lane] = new Link(nodeId, lane, context, lane == 0 ? null : links[0]);
         }
+        if (links.length > 1) {
+            links[0].follower = links[1];
+        }
     }
 
     /**
