@@ -101,6 +101,41 @@ public final class Platform {
     }
 
     /**
+     * Moves every thread of this process that exists now onto {@code cpus}, the JVM's own (JIT,
+     * collector) included; threads started afterwards inherit the affinity of the thread that
+     * starts them. For a CPU partition: call it before any real-time thread starts, and give the
+     * real-time threads the other CPUs explicitly ({@link #configureCurrentThread}), so that no
+     * ordinary Java thread waits, runnable, behind a real-time one (a safepoint waits for every
+     * such thread). Refusals (a thread that ended meanwhile is not one) are warned once and
+     * returned; on another OS than Linux, nothing is moved and the refusal says so.
+     */
+    public List<PlatformRefusal> moveProcessThreads(CpuSet cpus) {
+        Objects.requireNonNull(cpus, "cpus");
+        if (cpus.isInherit()) {
+            throw new IllegalArgumentException("cpus=inherit: name the CPUs to move the threads to");
+        }
+        var refusals = new ArrayList<PlatformRefusal>();
+        java.nio.file.Path tasks = java.nio.file.Path.of("/proc/self/task");
+        try (var entries = java.nio.file.Files.list(tasks)) {
+            for (java.nio.file.Path task : entries.toList()) {
+                int tid = Integer.parseInt(task.getFileName().toString());
+                NativeResult result = LinuxNative.setAffinity(tid, cpus.cpus());
+                if (!result.ok() && java.nio.file.Files.exists(task)) {
+                    refusals.add(refusal("cpu affinity", "thread " + tid + " to " + cpus, result.errno(),
+                            RefusalAdvice.forAffinity(cpus, result.errno(), LinuxNative.getAffinity(tid))));
+                }
+            }
+        } catch (java.io.IOException | RuntimeException e) {
+            refusals.add(new PlatformRefusal("cpu affinity", "every thread to " + cpus, 0, "",
+                    "cannot list this process's threads in " + tasks + ": " + e));
+        }
+        if (!refusals.isEmpty()) {
+            warnOnce(List.of(refusals.get(0)));
+        }
+        return refusals;
+    }
+
+    /**
      * Logs each refusal at WARN with its errno and fix, unless one of its kind (feature and errno)
      * was already logged in this JVM. Of several refusals of one kind only the first given is
      * quoted: give the most demanding first.

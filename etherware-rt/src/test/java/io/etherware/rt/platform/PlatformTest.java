@@ -149,4 +149,19 @@ class PlatformTest {
         }
         return result.get();
     }
+
+    @Test
+    void shouldMoveEveryThreadOfTheProcessAndRefuseACpuThatDoesNotExist() {
+        org.junit.jupiter.api.Assumptions.assumeTrue(io.etherware.rt.platform.internal.LinuxNative.isAvailable(),
+                "Linux only");
+        var platform = new Platform(new RefusalWarnings());
+        // Where this thread may run now: moving every thread there changes nothing for the other tests.
+        CpuSet allowed = CpuSet.of(io.etherware.rt.platform.internal.LinuxNative.getAffinity(0));
+        assertEquals(List.of(), platform.moveProcessThreads(allowed), "every thread of the JVM moved");
+        List<PlatformRefusal> refused = platform.moveProcessThreads(CpuSet.of(CpuSet.MAX_CPUS - 1));
+        assertFalse(refused.isEmpty(), "no thread may run on a CPU that does not exist");
+        assertEquals("cpu affinity", refused.get(0).feature());
+        assertArrayEquals(allowed.cpus(), io.etherware.rt.platform.internal.LinuxNative.getAffinity(0),
+                "a refused move leaves the threads where they were");
+    }
 }

@@ -86,6 +86,11 @@ public final class NetStressNodeCommand implements Callable<Integer> {
             description = "Ordinary threads that load the cores and allocate.")
     private int loadThreads;
 
+    @Option(names = "--rt-cpus", paramLabel = "CPUS", defaultValue = "inherit",
+            description = "The CPUs of this node's real-time threads (inherit: every CPU); the JVM's other"
+                    + " threads keep the affinity the JVM was started with.")
+    private String rtCpus;
+
     @Override
     public Integer call() throws Exception {
         InetSocketAddress plant;
@@ -104,20 +109,26 @@ public final class NetStressNodeCommand implements Callable<Integer> {
         err.flush();
         CycleReport.register();
         PrintWriter out = spec.commandLine().getOut();
-        RealtimeScheduler realtime = variant == StressScenario.Variant.RT ? Schedulers.etherwareRt() : null;
+        io.etherware.rt.platform.CpuSet realtimeCpus;
+        try {
+            realtimeCpus = io.etherware.rt.platform.CpuSet.parse(rtCpus);
+        } catch (IllegalArgumentException e) {
+            throw new ParameterException(spec.commandLine(), "--rt-cpus=" + e.getMessage());
+        }
+        RealtimeScheduler realtime = variant == StressScenario.Variant.RT ? Schedulers.etherwareRt(realtimeCpus) : null;
         ScenarioEvents events = new ScenarioEvents();
         GcActivity gcBefore = GcActivity.now();
         try (var node = EtherwareNode.builder().nodeId(NetStressScenario.CONTROL_NODE)
                 .scheduler(() -> realtime != null ? realtime : Schedulers.original()).build().start();
                 var net = NetworkMessenger.start(node, NetStressScenario.network(variant,
-                        WarmUp.warmedCodec(node.nodeId())).peer(plant).build());
+                        WarmUp.warmedCodec(node.nodeId()), realtimeCpus).peer(plant).build());
                 ControlListeners.Registration registration = ControlListeners.register(listener,
                         CycleReport.forwarder(node))) {
             node.add(PendulumController.DEFAULT_PROFILE,
                     () -> new ListenedController(ListenedController.configuration(listener)));
             node.add(NetStressScenario.NODE2_STRESS, () -> new StressComponent(stressMs * 1_000_000L, events));
             // Node 2's own Notifier, SCHED_FIFO 82 in both runs as on node 1, for its stress task's Ticks.
-            Notifier notifier = Notifier.install(node, NotifierConfig.defaults());
+            Notifier notifier = Notifier.install(node, NotifierConfig.defaults().withCpus(realtimeCpus));
             for (var profile : List.of(DspProxy.DEFAULT_PROFILE, CycleReport.RECORDER)) {
                 if (!net.awaitResolvable(profile, RESOLVE_TIMEOUT)) {
                     err.println("netstress-node: " + profile + " does not resolve from " + node.nodeId() + " within "

@@ -28,6 +28,8 @@ import io.etherware.examples.stress.StressScenario.Variant;
 import io.etherware.pendulum.components.PendulumController;
 import io.etherware.pendulum.plant.PendulumState;
 import io.etherware.rt.platform.ThreadGrant;
+import io.etherware.rt.platform.CpuSet;
+import io.etherware.rt.platform.Platform;
 import io.etherware.rt.platform.ThreadPolicy;
 import io.etherware.rt.scheduling.RealtimeScheduler;
 import io.etherware.services.network.NetworkConfig;
@@ -97,12 +99,27 @@ public final class NetStressScenario {
     private final StressConfig config;
     private final long node2OffsetNs;
     private final Function<String, Progress> progress;
+    /** Where both nodes' real-time threads run; inherit: every CPU, no partition. */
+    private final CpuSet realtimeCpus;
 
     /**
      * A scenario with {@code config}, node 2's stress {@code node2OffsetNs} after node 1's (0: at
      * the same times); {@code progress} makes the progress line of each run from its label.
      */
     public NetStressScenario(StressConfig config, long node2OffsetNs, Function<String, Progress> progress) {
+        this(config, node2OffsetNs, progress, CpuSet.inherit());
+    }
+
+    /**
+     * The same with the CPUs partitioned: every real-time thread of both nodes (dispatchers,
+     * network threads, Notifiers, the board and the probe) on {@code realtimeCpus}, every other
+     * thread of both JVMs on the remaining CPUs, so that no ordinary Java thread waits, runnable,
+     * behind a real-time one (a safepoint waits for every such thread, stopping the real-time ones
+     * too).
+     */
+    public NetStressScenario(StressConfig config, long node2OffsetNs, Function<String, Progress> progress,
+                             CpuSet realtimeCpus) {
+        this.realtimeCpus = Objects.requireNonNull(realtimeCpus, "realtimeCpus");
         this.config = Objects.requireNonNull(config, "config");
         if (node2OffsetNs < 0 || node2OffsetNs >= config.stressEveryNs()) {
             throw new IllegalArgumentException("node2OffsetNs=" + node2OffsetNs + ": must be within 0 .. stressEveryNs="
@@ -131,10 +148,16 @@ public final class NetStressScenario {
      * original Etherware, the messenger's default (SCHED_FIFO above the highest dispatcher) on
      * Etherware-RT.
      */
-    static NetworkConfig.Builder network(Variant variant, MessageCodec codec) {
+    static NetworkConfig.Builder network(Variant variant, MessageCodec codec, CpuSet realtimeCpus) {
         NetworkConfig.Builder builder = NetworkConfig.builder().codec(codec)
                 .listen(new InetSocketAddress("127.0.0.1", 0));
-        return variant == Variant.FIFO ? builder.threads(ThreadPolicy.NON_REALTIME) : builder;
+        return variant == Variant.FIFO ? builder.threads(ThreadPolicy.NON_REALTIME) : builder.threadCpus(realtimeCpus);
+    }
+
+    /** The CPUs not in {@code realtimeCpus}, of those this JVM may use; empty if none is left. */
+    public static int[] ordinaryCpus(CpuSet realtimeCpus) {
+        return java.util.stream.IntStream.range(0, Runtime.getRuntime().availableProcessors())
+                .filter(cpu -> !realtimeCpus.contains(cpu)).toArray();
     }
 
     /** What the network threads are in {@code variant}, in a few words. */
@@ -171,10 +194,15 @@ public final class NetStressScenario {
         int capacity = Math.toIntExact(settings.durationNs() / periodNs + SLACK);
         Files.createDirectories(settings.out());
         NodeClock clock = NodeClock.system();
-        SimThreads threads = new SimThreads();
+        if (!realtimeCpus.isInherit()) {
+            // Every thread of this JVM now, and node 2's JVM (it inherits this affinity), off the
+            // real-time CPUs; the real-time threads below take them explicitly.
+            Platform.current().moveProcessThreads(CpuSet.of(ordinaryCpus(realtimeCpus)));
+        }
+        SimThreads threads = new SimThreads(realtimeCpus);
         ScenarioEvents events = new ScenarioEvents();
         CycleLog cycles = new CycleLog(capacity, periodNs);
-        RealtimeScheduler realtime = variant == Variant.RT ? Schedulers.etherwareRt() : null;
+        RealtimeScheduler realtime = variant == Variant.RT ? Schedulers.etherwareRt(realtimeCpus) : null;
         Scheduler scheduler = realtime != null ? realtime : Schedulers.original();
         PendulumState initial = new PendulumState(0.0, 0.0, settings.initialTheta2Rad(), 0.0);
         String listenerName = "netstress-" + variant.key() + "-" + System.identityHashCode(cycles);
@@ -186,15 +214,16 @@ public final class NetStressScenario {
             rig.node().add(StressComponent.PROFILE, () -> new StressComponent(settings.stressWorkNs(), events));
             rig.node().start();
             try (NetworkMessenger net = NetworkMessenger.start(rig.node(),
-                    network(variant, WarmUp.warmedCodec(rig.node().nodeId())).build())) {
+                    network(variant, WarmUp.warmedCodec(rig.node().nodeId()), realtimeCpus).build())) {
                 // Node 1's Notifier: SCHED_FIFO 82, above every dispatcher, in both runs.
-                Notifier notifier = Notifier.install(rig.node(), NotifierConfig.defaults());
+                Notifier notifier = Notifier.install(rig.node(), NotifierConfig.defaults().withCpus(realtimeCpus));
                 Path log = settings.out().resolve("node-2-" + variant.key() + logSuffix + ".log");
                 NodeProcess node2 = NodeProcess.start(List.of("netstress-node",
                         "--connect", NodeProcess.hostPort(net.localAddress()), "--listener", listenerName,
                         "--variant", variant.name(), "--stress-every-ms", Long.toString(settings.stressEveryNs()
                                 / 1_000_000L), "--stress-ms", Long.toString(settings.stressWorkNs() / 1_000_000L),
-                        "--load-threads", Integer.toString(settings.loadThreads())), log, NODE_START_TIMEOUT_S);
+                        "--load-threads", Integer.toString(settings.loadThreads()), "--rt-cpus",
+                        realtimeCpus.toString()), log, NODE_START_TIMEOUT_S);
                 Balanced balanced;
                 List<String> printed;
                 try {

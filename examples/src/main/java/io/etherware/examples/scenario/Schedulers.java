@@ -23,9 +23,14 @@ public final class Schedulers {
      * on 3, earliest {@code now + period} first).
      */
     public static RealtimeScheduler etherwareRt() {
+        return etherwareRt(io.etherware.rt.platform.CpuSet.inherit());
+    }
+
+    /** {@link #etherwareRt()} with its real-time dispatchers on {@code realtimeCpus} (inherit: every CPU). */
+    public static RealtimeScheduler etherwareRt(io.etherware.rt.platform.CpuSet realtimeCpus) {
         return new RealtimeScheduler(RealtimeSchedulerConfig.builder()
                 .name("rt")
-                .threadSchedulingRule(ThreadSchedulingRule.tableII())
+                .threadSchedulingRule(ThreadSchedulingRule.tableII().withRealtimeOn(realtimeCpus))
                 .placementRule(new CriticalityDeadlinePlacement())
                 .build());
     }

@@ -32,16 +32,27 @@ public final class SimThreads {
     private static final long POLL_NS = 1_000_000L;
 
     private final List<ThreadGrant> grants = new CopyOnWriteArrayList<>();
+    private final CpuSet cpus;
+
+    /** Threads on every CPU. */
+    public SimThreads() {
+        this(CpuSet.inherit());
+    }
+
+    /** Threads on {@code cpus} (a real-time partition), or every CPU for {@link CpuSet#inherit()}. */
+    public SimThreads(CpuSet cpus) {
+        this.cpus = Objects.requireNonNull(cpus, "cpus");
+    }
 
     /**
      * A factory of daemon platform threads named {@code name} that run at SCHED_FIFO
-     * {@code priority} on every CPU.
+     * {@code priority} on this factory's CPUs.
      */
     public ThreadFactory fifo(String name, int priority) {
         Objects.requireNonNull(name, "name");
         ThreadPolicy policy = ThreadPolicy.fifo(priority);
         return runnable -> Thread.ofPlatform().name(name).daemon().unstarted(() -> {
-            ThreadGrant grant = Platform.current().configureCurrentThread(policy, CpuSet.inherit());
+            ThreadGrant grant = Platform.current().configureCurrentThread(policy, cpus);
             grants.add(grant);
             LOG.debug("{}", grant.toLine());
             runnable.run();
