@@ -62,6 +62,10 @@ final class RequestTable {
         });
         timer.setRemoveOnCancelPolicy(true);
         timer.setExecuteExistingDelayedTasksAfterShutdownPolicy(false);
+        // Started now, by the thread that builds the node, not by the first requester: started by
+        // a real-time dispatcher, it would inherit that dispatcher's CPUs and wait behind it there,
+        // runnable, holding up every safepoint of the JVM (seen with the CPUs partitioned).
+        timer.prestartCoreThread();
     }
 
     /**
