@@ -59,6 +59,26 @@ public record ThreadSchedulingRule(List<DispatcherSpec> dispatchers) {
         return new ThreadPolicy(highest.policy(), Math.min(highest.priority() + levels, MAX_REALTIME_PRIORITY));
     }
 
+    /**
+     * The policy {@code levels} real-time priorities above this rule's lowest real-time dispatcher
+     * (at most 99), with its policy; {@link ThreadPolicy#NON_REALTIME} when no dispatcher is
+     * real-time. The network lane that carries LOW messages runs one level above.
+     */
+    public ThreadPolicy aboveLowest(int levels) {
+        if (levels < 0) {
+            throw new IllegalArgumentException("levels=" + levels + " must be >= 0");
+        }
+        ThreadPolicy lowest = null;
+        for (DispatcherSpec spec : dispatchers) {
+            ThreadPolicy policy = spec.policy();
+            if (policy.isRealtime() && (lowest == null || policy.priority() < lowest.priority())) {
+                lowest = policy;
+            }
+        }
+        return lowest == null ? ThreadPolicy.NON_REALTIME
+                : new ThreadPolicy(lowest.policy(), Math.min(lowest.priority() + levels, MAX_REALTIME_PRIORITY));
+    }
+
     /** This rule with its real-time dispatchers on {@code cpus}; the others stay where they are. */
     public ThreadSchedulingRule withRealtimeOn(CpuSet cpus) {
         Objects.requireNonNull(cpus, "cpus");

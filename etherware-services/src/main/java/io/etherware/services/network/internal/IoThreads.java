@@ -5,7 +5,6 @@ import io.etherware.core.kernel.Kernel;
 import io.etherware.rt.platform.CpuSet;
 import io.etherware.rt.platform.Platform;
 import io.etherware.rt.platform.ThreadPolicy;
-import io.etherware.rt.scheduling.DispatcherSpec;
 import io.etherware.rt.scheduling.RealtimeScheduler;
 import io.etherware.rt.scheduling.ThreadSchedulingRule;
 import io.etherware.services.network.NetworkConfig;
@@ -28,22 +27,9 @@ record IoThreads(ThreadPolicy policy, CpuSet cpus) {
             ThreadSchedulingRule rule = kernel instanceof EtherwareNode node
                     && node.scheduler() instanceof RealtimeScheduler realtime
                     ? realtime.config().threadSchedulingRule() : null;
-            policy = rule == null ? ThreadPolicy.NON_REALTIME : lane == 0 ? rule.above(1) : aboveLowest(rule);
+            policy = rule == null ? ThreadPolicy.NON_REALTIME : lane == 0 ? rule.above(1) : rule.aboveLowest(1);
         }
         return new IoThreads(policy, config.cpus());
-    }
-
-    /** One level above the rule's lowest real-time dispatcher, or ordinary if none is real-time. */
-    private static ThreadPolicy aboveLowest(ThreadSchedulingRule rule) {
-        ThreadPolicy lowest = null;
-        for (DispatcherSpec spec : rule.dispatchers()) {
-            ThreadPolicy policy = spec.policy();
-            if (policy.isRealtime() && (lowest == null || policy.priority() < lowest.priority())) {
-                lowest = policy;
-            }
-        }
-        return lowest == null ? ThreadPolicy.NON_REALTIME
-                : new ThreadPolicy(lowest.policy(), Math.min(lowest.priority() + 1, ThreadSchedulingRule.MAX_REALTIME_PRIORITY));
     }
 
     /**
