@@ -173,10 +173,11 @@ public final class Dispatcher implements Runnable {
         if (ran) {
             account(job, startNs, endNs);
         } else {
-            recorder.recordParked();
             if (context.priorityInheritance) {
                 lendPriorityFor(job);
             }
+            // Counted after the loan, so whoever sees the count also sees the holder's boost.
+            recorder.recordParked();
         }
         context.finished.incrementAndGet();
         event.end();
