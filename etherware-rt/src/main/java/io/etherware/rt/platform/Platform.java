@@ -61,7 +61,9 @@ public final class Platform {
      * <p>A real-time policy is set with {@code SCHED_RESET_ON_FORK}, so threads this thread
      * creates (a lazily started pool worker, say) start at SCHED_OTHER instead of inheriting a
      * real-time priority nobody asked for. The affinity is set first, so the thread is already
-     * where it belongs when it becomes real-time.
+     * where it belongs when it becomes real-time. Under a {@link CpuPartition}, {@link
+     * CpuSet#inherit()} means the partition's real-time CPUs for a real-time request and its
+     * ordinary CPUs otherwise.
      */
     public ThreadGrant configureCurrentThread(ThreadPolicy requested, CpuSet cpus) {
         ThreadGrant grant = configureCurrentThreadWithoutWarning(requested, cpus);
@@ -78,6 +80,10 @@ public final class Platform {
         Objects.requireNonNull(requested, "requested");
         Objects.requireNonNull(cpus, "cpus");
         var refusals = new ArrayList<PlatformRefusal>();
+        CpuPartition partition = CpuPartition.current();
+        if (partition != null) {
+            cpus = partition.resolve(requested, cpus);
+        }
         if (!cpus.isInherit()) {
             NativeResult result = LinuxNative.setAffinity(0, cpus.cpus());
             if (!result.ok()) {
@@ -101,38 +107,22 @@ public final class Platform {
     }
 
     /**
-     * Moves every thread of this process that exists now onto {@code cpus}, the JVM's own (JIT,
-     * collector) included; threads started afterwards inherit the affinity of the thread that
-     * starts them. For a CPU partition: call it before any real-time thread starts, and give the
-     * real-time threads the other CPUs explicitly ({@link #configureCurrentThread}), so that no
-     * ordinary Java thread waits, runnable, behind a real-time one (a safepoint waits for every
-     * such thread). Refusals (a thread that ended meanwhile is not one) are warned once and
-     * returned; on another OS than Linux, nothing is moved and the refusal says so.
+     * Splits this JVM's CPUs between real-time threads ({@code realtimeCpus}) and every other
+     * thread, the JVM's own included, and keeps it so while the partition is open; see {@link
+     * CpuPartition}. Call it before the real-time threads start. A JVM has one partition: opening
+     * it again with the same CPUs shares it (each holder closes its share), with other CPUs fails.
+     *
+     * @throws IllegalArgumentException when {@code realtimeCpus} is inherit, names a CPU this
+     *                                  process may not use, or leaves none for the other threads
+     * @throws IllegalStateException    when the CPUs cannot be read, or another partition is open
      */
-    public List<PlatformRefusal> moveProcessThreads(CpuSet cpus) {
-        Objects.requireNonNull(cpus, "cpus");
-        if (cpus.isInherit()) {
-            throw new IllegalArgumentException("cpus=inherit: name the CPUs to move the threads to");
-        }
-        var refusals = new ArrayList<PlatformRefusal>();
-        java.nio.file.Path tasks = java.nio.file.Path.of("/proc/self/task");
-        try (var entries = java.nio.file.Files.list(tasks)) {
-            for (java.nio.file.Path task : entries.toList()) {
-                int tid = Integer.parseInt(task.getFileName().toString());
-                NativeResult result = LinuxNative.setAffinity(tid, cpus.cpus());
-                if (!result.ok() && java.nio.file.Files.exists(task)) {
-                    refusals.add(refusal("cpu affinity", "thread " + tid + " to " + cpus, result.errno(),
-                            RefusalAdvice.forAffinity(cpus, result.errno(), LinuxNative.getAffinity(tid))));
-                }
-            }
-        } catch (java.io.IOException | RuntimeException e) {
-            refusals.add(new PlatformRefusal("cpu affinity", "every thread to " + cpus, 0, "",
-                    "cannot list this process's threads in " + tasks + ": " + e));
-        }
-        if (!refusals.isEmpty()) {
-            warnOnce(List.of(refusals.get(0)));
-        }
-        return refusals;
+    public CpuPartition partitionCpus(CpuSet realtimeCpus) {
+        return CpuPartition.open(realtimeCpus);
+    }
+
+    /** This JVM's CPU partition, if one is open. */
+    public Optional<CpuPartition> cpuPartition() {
+        return Optional.ofNullable(CpuPartition.current());
     }
 
     /**

@@ -7,26 +7,40 @@ import java.util.Optional;
 
 /**
  * What a scheduler's threads asked of the OS and got: one line per dispatcher, requested vs
- * granted, plus the memory lock when one was requested. A node logs it at start. Immutable.
+ * granted, plus the memory lock, the CPU latency request and the CPU partition when they were
+ * requested. A node logs it at start. Immutable.
  *
  * @param threads             one grant per dispatcher thread, in dispatcher order
  * @param memoryLockRequested whether {@code mlockall} was requested
  * @param memoryLockRefusal   why the memory lock was refused; empty when granted or not requested
+ * @param processLines        one line each for the process-wide requests (CPU latency, partition)
+ *                            that were made; empty when none was
+ * @param processRefusals     what of those was refused; empty when everything was granted
  */
 public record PlatformReport(List<ThreadGrant> threads, boolean memoryLockRequested,
-                             Optional<PlatformRefusal> memoryLockRefusal) {
+                             Optional<PlatformRefusal> memoryLockRefusal, List<String> processLines,
+                             List<PlatformRefusal> processRefusals) {
 
     public PlatformReport {
         threads = List.copyOf(threads);
         Objects.requireNonNull(memoryLockRefusal, "memoryLockRefusal");
+        processLines = List.copyOf(processLines);
+        processRefusals = List.copyOf(processRefusals);
     }
 
-    /** Whether every thread got the policy it asked for, and memory was locked if asked. */
+    /** A report of thread grants and the memory lock only. */
+    public PlatformReport(List<ThreadGrant> threads, boolean memoryLockRequested,
+                          Optional<PlatformRefusal> memoryLockRefusal) {
+        this(threads, memoryLockRequested, memoryLockRefusal, List.of(), List.of());
+    }
+
+    /** Whether every thread got the policy it asked for, and every process-wide request was granted. */
     public boolean isFullyGranted() {
-        return threads.stream().allMatch(grant -> grant.refusals().isEmpty()) && memoryLockRefusal.isEmpty();
+        return threads.stream().allMatch(grant -> grant.refusals().isEmpty()) && memoryLockRefusal.isEmpty()
+                && processRefusals.isEmpty();
     }
 
-    /** One line per dispatcher, then one for the memory lock when it was requested. */
+    /** One line per dispatcher, then the memory lock, CPU latency and partition lines when requested. */
     public List<String> lines() {
         var lines = new ArrayList<String>();
         threads.forEach(grant -> lines.add(grant.toLine()));
@@ -34,6 +48,7 @@ public record PlatformReport(List<ThreadGrant> threads, boolean memoryLockReques
             lines.add("memory: requested mlockall(MCL_CURRENT|MCL_FUTURE), "
                     + memoryLockRefusal.map(refusal -> "refused [" + refusal + "]").orElse("granted"));
         }
+        lines.addAll(processLines);
         return lines;
     }
 

@@ -6,6 +6,8 @@ import io.etherware.core.scheduler.Scheduler;
 import io.etherware.core.time.NodeClock;
 import io.etherware.rt.platform.Platform;
 import io.etherware.rt.platform.PlatformRefusal;
+import io.etherware.rt.platform.CpuLatencyHold;
+import io.etherware.rt.platform.CpuPartition;
 import io.etherware.rt.platform.PlatformReport;
 import io.etherware.rt.platform.ThreadGrant;
 import io.etherware.rt.scheduling.internal.ComponentRecorder;
@@ -68,6 +70,8 @@ public final class RealtimeScheduler implements Scheduler {
     private volatile Dispatcher[] dispatchers;
     private volatile PlatformReport platformReport = new PlatformReport(List.of(), false, Optional.empty());
     private boolean shutDown;
+    private CpuLatencyHold cpuLatency = CpuLatencyHold.none();
+    private CpuPartition partition;
 
     public RealtimeScheduler(RealtimeSchedulerConfig config) {
         this.config = Objects.requireNonNull(config, "config");
@@ -107,6 +111,22 @@ public final class RealtimeScheduler implements Scheduler {
             }
             Optional<PlatformRefusal> memoryRefusal = config.lockMemory() ? Platform.current().lockMemory()
                     : Optional.empty();
+            var processLines = new ArrayList<String>();
+            var processRefusals = new ArrayList<PlatformRefusal>();
+            ThreadSchedulingRule rule = config.threadSchedulingRule();
+            boolean anyRealtime = rule.dispatchers().stream().anyMatch(spec -> spec.policy().isRealtime());
+            if (config.holdCpuLatency() && anyRealtime) {
+                cpuLatency = CpuLatencyHold.request();
+                processLines.add(cpuLatency.state());
+                cpuLatency.refusal().ifPresent(processRefusals::add);
+            }
+            if (!config.realtimeCpus().isInherit()) {
+                // Before the dispatchers start: they, and every thread asking for a real-time
+                // policy on inherited CPUs from now on, take the real-time CPUs.
+                partition = Platform.current().partitionCpus(config.realtimeCpus());
+                processLines.add(partition.describe());
+                processRefusals.addAll(partition.refusals());
+            }
             var newContext = new DispatchContext(runner, clock, components, config.deadlineMissHandler(),
                     config.priorityInheritance());
             ThreadSchedulingRule tsr = config.threadSchedulingRule();
@@ -125,7 +145,8 @@ public final class RealtimeScheduler implements Scheduler {
                 grants.add(awaitGrant(dispatcher, deadlineNs));
             }
             warnMostDemandingFirst(grants);
-            platformReport = new PlatformReport(grants, config.lockMemory(), memoryRefusal);
+            platformReport = new PlatformReport(grants, config.lockMemory(), memoryRefusal, processLines,
+                    processRefusals);
             dispatchers = all;
             context = newContext;
             LOG.info("scheduler {}: placement {}, {} dispatchers {}", name(), config.placementRule(), all.length,
@@ -279,6 +300,12 @@ public final class RealtimeScheduler implements Scheduler {
         if (stranded[0] > 0) {
             LOG.warn("scheduler {}: {} queued jobs stay with dispatchers still inside a job after shutdown", name(),
                     stranded[0]);
+        }
+        synchronized (lifecycle) {
+            cpuLatency.close();
+            if (partition != null) {
+                partition.close();
+            }
         }
         LOG.info("scheduler {} stopped; {} queued jobs not run", name(), leftovers.size());
         return leftovers;

@@ -1,5 +1,6 @@
 package io.etherware.rt.scheduling;
 
+import io.etherware.rt.platform.CpuSet;
 import java.util.Objects;
 import java.util.regex.Pattern;
 
@@ -18,7 +19,13 @@ import java.util.regex.Pattern;
  *   <li>{@code lockMemory} = false (when true, {@code mlockall(MCL_CURRENT|MCL_FUTURE)} at start);</li>
  *   <li>{@code priorityInheritance} = true: while a job waits for its component, the dispatcher
  *       running that component is raised to the waiting job's dispatcher priority;</li>
- *   <li>{@code deadlineMissHandler} = {@link DeadlineMissHandler#NONE}.</li>
+ *   <li>{@code deadlineMissHandler} = {@link DeadlineMissHandler#NONE};</li>
+ *   <li>{@code holdCpuLatency} = true: while the scheduler runs and has a real-time dispatcher, it
+ *       holds {@code /dev/cpu_dma_latency} at 0 ({@link io.etherware.rt.platform.CpuLatencyHold}),
+ *       as {@code cyclictest} does; refused (no permission), it warns once and runs on;</li>
+ *   <li>{@code realtimeCpus} = {@link CpuSet#inherit()}: no CPU partition. Named CPUs partition the
+ *       JVM at start ({@link io.etherware.rt.platform.CpuPartition}): the real-time threads there,
+ *       every other thread of the JVM on the remaining CPUs.</li>
  * </ul>
  *
  * @param name                 prefix of thread names and the scheduler's {@code name()}
@@ -28,11 +35,14 @@ import java.util.regex.Pattern;
  * @param lockMemory           whether to lock the process's memory at start
  * @param priorityInheritance  whether to raise a component's running dispatcher for a waiting job
  * @param deadlineMissHandler  called on a deadline miss, on the dispatcher thread
+ * @param holdCpuLatency       whether to keep the CPUs out of deep idle states while running
+ * @param realtimeCpus         the CPUs of the JVM's real-time threads, or inherit for no partition
  */
 public record RealtimeSchedulerConfig(String name, ThreadSchedulingRule threadSchedulingRule,
                                       JobPlacementRule placementRule, AdmissionMode admissionMode,
                                       boolean lockMemory, boolean priorityInheritance,
-                                      DeadlineMissHandler deadlineMissHandler) {
+                                      DeadlineMissHandler deadlineMissHandler, boolean holdCpuLatency,
+                                      CpuSet realtimeCpus) {
 
     private static final Pattern NAME = Pattern.compile("[A-Za-z0-9_.-]{1,32}");
 
@@ -42,6 +52,7 @@ public record RealtimeSchedulerConfig(String name, ThreadSchedulingRule threadSc
         Objects.requireNonNull(placementRule, "placementRule");
         Objects.requireNonNull(admissionMode, "admissionMode");
         Objects.requireNonNull(deadlineMissHandler, "deadlineMissHandler");
+        Objects.requireNonNull(realtimeCpus, "realtimeCpus");
         if (!NAME.matcher(name).matches()) {
             throw new IllegalArgumentException("name='" + name + "' must be 1..32 of [A-Za-z0-9_.-]");
         }
@@ -66,7 +77,7 @@ public record RealtimeSchedulerConfig(String name, ThreadSchedulingRule threadSc
     public Builder toBuilder() {
         return new Builder().name(name).threadSchedulingRule(threadSchedulingRule).placementRule(placementRule)
                 .admissionMode(admissionMode).lockMemory(lockMemory).priorityInheritance(priorityInheritance)
-                .deadlineMissHandler(deadlineMissHandler);
+                .deadlineMissHandler(deadlineMissHandler).holdCpuLatency(holdCpuLatency).realtimeCpus(realtimeCpus);
     }
 
     /** Builds a {@link RealtimeSchedulerConfig}; not thread-safe, {@link #build()} validates. */
@@ -78,6 +89,8 @@ public record RealtimeSchedulerConfig(String name, ThreadSchedulingRule threadSc
         private boolean lockMemory;
         private boolean priorityInheritance = true;
         private DeadlineMissHandler deadlineMissHandler = DeadlineMissHandler.NONE;
+        private boolean holdCpuLatency = true;
+        private CpuSet realtimeCpus = CpuSet.inherit();
 
         private Builder() {
         }
@@ -117,9 +130,25 @@ public record RealtimeSchedulerConfig(String name, ThreadSchedulingRule threadSc
             return this;
         }
 
+        /** Whether to hold the CPUs out of deep idle states while a real-time dispatcher runs. */
+        public Builder holdCpuLatency(boolean hold) {
+            this.holdCpuLatency = hold;
+            return this;
+        }
+
+        /**
+         * Partitions the JVM's CPUs at start: the real-time dispatchers (and every thread that later
+         * asks the platform for a real-time policy on inherited CPUs: Notifier, network threads) on
+         * {@code cpus}, every other thread on the rest. {@link CpuSet#inherit()}: no partition.
+         */
+        public Builder realtimeCpus(CpuSet cpus) {
+            this.realtimeCpus = cpus;
+            return this;
+        }
+
         public RealtimeSchedulerConfig build() {
             return new RealtimeSchedulerConfig(name, threadSchedulingRule, placementRule, admissionMode, lockMemory,
-                    priorityInheritance, deadlineMissHandler);
+                    priorityInheritance, deadlineMissHandler, holdCpuLatency, realtimeCpus);
         }
     }
 }

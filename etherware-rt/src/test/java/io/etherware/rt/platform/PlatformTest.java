@@ -3,6 +3,8 @@ package io.etherware.rt.platform;
 import static org.junit.jupiter.api.Assertions.assertArrayEquals;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertSame;
+import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.etherware.rt.platform.internal.RefusalWarnings;
@@ -151,17 +153,47 @@ class PlatformTest {
     }
 
     @Test
-    void shouldMoveEveryThreadOfTheProcessAndRefuseACpuThatDoesNotExist() {
+    void shouldKeepOrdinaryThreadsOffTheRealtimeCpusOfAPartitionUntilItCloses() throws Exception {
         org.junit.jupiter.api.Assumptions.assumeTrue(io.etherware.rt.platform.internal.LinuxNative.isAvailable(),
                 "Linux only");
-        var platform = new Platform(new RefusalWarnings());
-        // Where this thread may run now: moving every thread there changes nothing for the other tests.
-        CpuSet allowed = CpuSet.of(io.etherware.rt.platform.internal.LinuxNative.getAffinity(0));
-        assertEquals(List.of(), platform.moveProcessThreads(allowed), "every thread of the JVM moved");
-        List<PlatformRefusal> refused = platform.moveProcessThreads(CpuSet.of(CpuSet.MAX_CPUS - 1));
-        assertFalse(refused.isEmpty(), "no thread may run on a CPU that does not exist");
-        assertEquals("cpu affinity", refused.get(0).feature());
-        assertArrayEquals(allowed.cpus(), io.etherware.rt.platform.internal.LinuxNative.getAffinity(0),
-                "a refused move leaves the threads where they were");
+        int[] allowed = io.etherware.rt.platform.internal.LinuxNative.getAffinity(0);
+        org.junit.jupiter.api.Assumptions.assumeTrue(allowed.length >= 2, "needs two CPUs");
+        var platform = Platform.current();
+        CpuSet realtime = CpuSet.of(allowed[allowed.length - 1]);
+        CpuSet ordinary = CpuSet.of(java.util.Arrays.copyOf(allowed, allowed.length - 1));
+        assertThrows(IllegalArgumentException.class, () -> platform.partitionCpus(CpuSet.of(allowed)),
+                "a partition must leave a CPU for the other threads");
+        assertThrows(IllegalArgumentException.class, () -> platform.partitionCpus(CpuSet.of(CpuSet.MAX_CPUS - 1)),
+                "a CPU this process may not use");
+        try (CpuPartition partition = platform.partitionCpus(realtime)) {
+            assertEquals(ordinary, partition.ordinaryCpus());
+            assertArrayEquals(ordinary.cpus(), io.etherware.rt.platform.internal.LinuxNative.getAffinity(0),
+                    "the caller, an ordinary thread, was moved off the real-time CPU");
+            assertEquals(realtime, partition.resolve(ThreadPolicy.fifo(10), CpuSet.inherit()));
+            assertEquals(ordinary, partition.resolve(ThreadPolicy.NON_REALTIME, CpuSet.inherit()));
+            assertThrows(IllegalStateException.class, () -> platform.partitionCpus(ordinary),
+                    "one partition per JVM");
+            try (CpuPartition shared = platform.partitionCpus(realtime)) {
+                assertSame(partition, shared);
+            }
+            assertSame(partition, platform.cpuPartition().orElseThrow(), "still held by the first holder");
+            // An ordinary thread that lands on the real-time CPU (as one started by a pinned
+            // real-time thread does) is moved back by the keeper.
+            int[] seen = onFreshThread(() -> {
+                io.etherware.rt.platform.internal.LinuxNative.setAffinity(0, realtime.cpus());
+                long untilNs = System.nanoTime() + 5 * CpuPartition.KEEPER_PERIOD_NS;
+                int[] affinity = io.etherware.rt.platform.internal.LinuxNative.getAffinity(0);
+                while (java.util.Arrays.equals(affinity, realtime.cpus()) && System.nanoTime() < untilNs) {
+                    java.util.concurrent.locks.LockSupport.parkNanos(10_000_000);
+                    affinity = io.etherware.rt.platform.internal.LinuxNative.getAffinity(0);
+                }
+                return affinity;
+            });
+            assertArrayEquals(ordinary.cpus(), seen, "moved back to the ordinary CPUs");
+            assertTrue(partition.threadsMovedBack() >= 1, partition.describe());
+        }
+        assertTrue(platform.cpuPartition().isEmpty());
+        assertArrayEquals(allowed, io.etherware.rt.platform.internal.LinuxNative.getAffinity(0),
+                "closed: ordinary threads may use every CPU again");
     }
 }

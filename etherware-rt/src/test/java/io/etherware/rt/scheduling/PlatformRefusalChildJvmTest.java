@@ -55,7 +55,7 @@ class PlatformRefusalChildJvmTest {
         assertEquals(List.of("HIGH on rt-dispatcher-1"), run.prefixed("RAN "),
                 "the node runs on without real-time priority");
         List<String> report = run.prefixed("REPORT ");
-        assertEquals(5, report.size(), String.join("\n", report));
+        assertEquals(6, report.size(), String.join("\n", report));
         assertTrue(report.get(0).contains("requested SCHED_OTHER") && report.get(0).contains("granted SCHED_OTHER"),
                 report.get(0));
         for (int id = 1; id <= 3; id++) {
@@ -66,6 +66,7 @@ class PlatformRefusalChildJvmTest {
         }
         assertTrue(report.get(4).startsWith("memory: requested mlockall"), report.get(4));
         assertTrue(report.get(4).contains("refused"), report.get(4));
+        assertTrue(report.get(5).startsWith("cpu latency: "), "the CPU latency request is reported: " + report.get(5));
         assertEquals(1, run.warnings("thread priority"), "one warning for three refused dispatchers");
         assertEquals(1, run.warnings("EPERM (errno 1: Operation not permitted)"));
         assertEquals(1, run.warnings("setcap cap_sys_nice+ep"), "the warning says how to fix it");

@@ -5,13 +5,15 @@ import io.etherware.core.kernel.EtherwareNode;
 import io.etherware.core.kernel.Kernel;
 import io.etherware.core.message.ContentsTypes;
 import io.etherware.core.message.Profile;
+import io.etherware.core.time.DeadlineSleeper;
 import io.etherware.core.time.NodeClock;
+import io.etherware.rt.platform.AbsoluteSleeper;
 import io.etherware.rt.platform.CpuSet;
 import io.etherware.rt.platform.Platform;
 import io.etherware.rt.platform.PlatformRefusal;
 import io.etherware.rt.platform.ThreadGrant;
 import io.etherware.rt.platform.ThreadPolicy;
-import io.etherware.services.notifier.internal.ParkingSleeper;
+import io.etherware.services.notifier.internal.ReleaseSleeper;
 import io.etherware.services.notifier.internal.ReleaseSchedule;
 import io.etherware.services.notifier.internal.Sleeper;
 import io.etherware.services.notifier.internal.SubscriptionState;
@@ -74,6 +76,7 @@ public final class Notifier implements AutoCloseable {
     private final NotifierConfig config;
     private final NodeClock clock;
     private final Sleeper sleeper;
+    private final String sleepMethod;
     private final Profile profile;
     private final ReleaseSchedule schedule;
     private final ConcurrentHashMap<String, SubscriptionState> subscriptions = new ConcurrentHashMap<>();
@@ -98,7 +101,14 @@ public final class Notifier implements AutoCloseable {
         this.kernel = Objects.requireNonNull(kernel, "kernel");
         this.config = Objects.requireNonNull(config, "config");
         this.clock = Objects.requireNonNull(clock, "clock");
-        this.sleeper = sleeper != null ? sleeper : new ParkingSleeper(clock, config.spinNs());
+        DeadlineSleeper kernelSleeper = config.kernelSleep() && clock == NodeClock.system()
+                && AbsoluteSleeper.isAvailable() ? AbsoluteSleeper.forCurrentThread(clock) : null;
+        this.sleeper = sleeper != null ? sleeper : new ReleaseSleeper(clock, config.spinNs(), kernelSleeper);
+        this.sleepMethod = sleeper != null ? "a test's sleeper" : kernelSleeper != null
+                ? "parks, then " + AbsoluteSleeper.describe(kernelSleeper) + " for the last "
+                        + ReleaseSleeper.KERNEL_WINDOW_NS / 1_000 + " us"
+                : "LockSupport.parkNanos" + (config.kernelSleep() ? AbsoluteSleeper.unavailableReason()
+                        .map(reason -> " (" + reason + ")").orElse(" (not the system clock)") : "");
         this.profile = config.profile() != null ? config.profile() : profileFor(kernel.nodeId());
         this.schedule = new ReleaseSchedule(kernel, clock, profile);
         this.component = new NotifierComponent(this);
@@ -361,7 +371,7 @@ public final class Notifier implements AutoCloseable {
         try {
             // Refusals are logged once per kind by the platform, with the errno and the fix.
             grant = Platform.current().configureCurrentThread(requested, cpus);
-            LOG.info("notifier {}: {}", profile, grant.toLine());
+            LOG.info("notifier {}: {}; sleeps: {}", profile, grant.toLine(), sleepMethod);
         } catch (RuntimeException e) {
             LOG.error("notifier {}: could not configure its thread; it runs at the inherited priority", profile, e);
             grant = new ThreadGrant(Thread.currentThread().getName(), -1, requested, ThreadPolicy.NON_REALTIME, cpus,
@@ -370,6 +380,11 @@ public final class Notifier implements AutoCloseable {
         } finally {
             started.countDown();
         }
+    }
+
+    /** How the Notifier's thread sleeps to a release, for reports: parks only, or parks then sleeps in the kernel. */
+    public String sleepMethod() {
+        return sleepMethod;
     }
 
     @Override

@@ -13,7 +13,9 @@ import java.util.Objects;
  * <p>Defaults ({@link #defaults()}): SCHED_FIFO {@value #DEFAULT_PRIORITY}, two levels above the
  * highest dispatcher of the paper's Table II ({@link ThreadSchedulingRule#HIGH_PRIORITY}) and one
  * above the network's threads, so a Tick is released before any component work that it activates
- * (or any message in transit) can delay it; every CPU; no spin.
+ * (or any message in transit) can delay it; every CPU (a CPU partition's real-time CPUs under one);
+ * no spin; the last stretch before each release slept in the kernel to the release time where
+ * possible.
  * The priority is a request: refused (no CAP_SYS_NICE, say), the platform warns once with the
  * errno and the fix, and the Notifier runs on at the priority it has. Use {@link #above} to sit
  * two levels above another rule, and {@link #withThreadPolicy} with
@@ -28,9 +30,13 @@ import java.util.Objects;
  *                     for wake-up accuracy; it is bounded per release, so at real-time priority it
  *                     takes at most {@code spinNs} per release from everything else on its CPU
  * @param threadName   the Notifier thread's name
+ * @param kernelSleep  whether the thread sleeps the last stretch before each release in the kernel
+ *                     to the absolute release time ({@code clock_nanosleep(CLOCK_MONOTONIC,
+ *                     TIMER_ABSTIME)}, {@link io.etherware.rt.platform.AbsoluteSleeper}) where that
+ *                     call is usable (default), or only parks ({@code LockSupport.parkNanos})
  */
 public record NotifierConfig(Profile profile, ThreadPolicy threadPolicy, CpuSet cpus, long spinNs,
-                             String threadName) {
+                             String threadName, boolean kernelSleep) {
 
     /**
      * Default SCHED_FIFO priority: two above Table II's highest dispatcher, with the network's
@@ -43,7 +49,7 @@ public record NotifierConfig(Profile profile, ThreadPolicy threadPolicy, CpuSet 
     public static final String DEFAULT_THREAD_NAME = "etherware-notifier";
 
     private static final NotifierConfig DEFAULTS = new NotifierConfig(null, ThreadPolicy.fifo(DEFAULT_PRIORITY),
-            CpuSet.inherit(), 0, DEFAULT_THREAD_NAME);
+            CpuSet.inherit(), 0, DEFAULT_THREAD_NAME, true);
 
     public NotifierConfig {
         Objects.requireNonNull(threadPolicy, "threadPolicy");
@@ -80,22 +86,27 @@ public record NotifierConfig(Profile profile, ThreadPolicy threadPolicy, CpuSet 
     }
 
     public NotifierConfig withProfile(Profile newProfile) {
-        return new NotifierConfig(newProfile, threadPolicy, cpus, spinNs, threadName);
+        return new NotifierConfig(newProfile, threadPolicy, cpus, spinNs, threadName, kernelSleep);
     }
 
     public NotifierConfig withThreadPolicy(ThreadPolicy newThreadPolicy) {
-        return new NotifierConfig(profile, newThreadPolicy, cpus, spinNs, threadName);
+        return new NotifierConfig(profile, newThreadPolicy, cpus, spinNs, threadName, kernelSleep);
     }
 
     public NotifierConfig withCpus(CpuSet newCpus) {
-        return new NotifierConfig(profile, threadPolicy, newCpus, spinNs, threadName);
+        return new NotifierConfig(profile, threadPolicy, newCpus, spinNs, threadName, kernelSleep);
     }
 
     public NotifierConfig withSpinNs(long newSpinNs) {
-        return new NotifierConfig(profile, threadPolicy, cpus, newSpinNs, threadName);
+        return new NotifierConfig(profile, threadPolicy, cpus, newSpinNs, threadName, kernelSleep);
     }
 
     public NotifierConfig withThreadName(String newThreadName) {
-        return new NotifierConfig(profile, threadPolicy, cpus, spinNs, newThreadName);
+        return new NotifierConfig(profile, threadPolicy, cpus, spinNs, newThreadName, kernelSleep);
+    }
+
+    /** This configuration sleeping in the kernel to each release time ({@code true}) or only parking. */
+    public NotifierConfig withKernelSleep(boolean newKernelSleep) {
+        return new NotifierConfig(profile, threadPolicy, cpus, spinNs, threadName, newKernelSleep);
     }
 }

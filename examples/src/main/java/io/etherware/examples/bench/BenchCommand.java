@@ -1,5 +1,6 @@
 package io.etherware.examples.bench;
 
+import io.etherware.rt.platform.CpuLatencyHold;
 import java.io.PrintWriter;
 import java.nio.file.Path;
 import java.util.ArrayList;
@@ -98,6 +99,7 @@ public final class BenchCommand implements Callable<Integer> {
         }
         BenchConfig config = quick ? BenchConfig.quick() : BenchConfig.full(durationS == null
                 ? BenchConfig.DEFAULT_PERIODIC_S : durationS);
+        config = config.withHoldCpuLatency(!cpusMaySleep);
         return repetitions == null ? config : config.withUpgradeRepetitions(repetitions);
     }
 }

@@ -1,5 +1,7 @@
 package io.etherware.examples.bench;
 
+import io.etherware.rt.scheduling.RealtimeScheduler;
+import io.etherware.rt.scheduling.RealtimeSchedulerConfig;
 import java.util.concurrent.TimeUnit;
 
 /**
@@ -16,9 +18,12 @@ import java.util.concurrent.TimeUnit;
  * @param priority            SCHED_FIFO priority of the periodic threads (Notifier, executor, cyclictest)
  * @param realtimeBursts      whether saturating bursts (the upgrade's message chain, a few ms each) may
  *                            run on SCHED_FIFO dispatchers; false in the smoke run, which runs in the test suite
+ * @param holdCpuLatency      whether the bench's real-time nodes hold {@code /dev/cpu_dma_latency} at 0 (as the
+ *                            bench itself does then), so every row runs in the same CPU-latency state
  */
 public record BenchConfig(long periodicNs, long dispatchNs, long throughputNs, long warmupNs, int codecOps,
-                          int roundTrips, int upgradeRepetitions, int priority, boolean realtimeBursts) {
+                          int roundTrips, int upgradeRepetitions, int priority, boolean realtimeBursts,
+                          boolean holdCpuLatency) {
 
     /** The real-time period of sections 1 and 2: 1 kHz. */
     public static final long PERIOD_NS = TimeUnit.MILLISECONDS.toNanos(1);
@@ -50,20 +55,36 @@ public record BenchConfig(long periodicNs, long dispatchNs, long throughputNs, l
     /** The full run: {@code periodicS} per periodic row, 10 s per dispatch row, 3 s per throughput row. */
     public static BenchConfig full(double periodicS) {
         return new BenchConfig(secondsToNs(periodicS), TimeUnit.SECONDS.toNanos(10), TimeUnit.SECONDS.toNanos(3),
-                TimeUnit.SECONDS.toNanos(2), 200_000, 30_000, 200, DEFAULT_PRIORITY, true);
+                TimeUnit.SECONDS.toNanos(2), 200_000, 30_000, 200, DEFAULT_PRIORITY, true, true);
     }
 
     /** The smoke run: about 30 s in all, enough samples for every row to be sane, not for its figures. */
     public static BenchConfig quick() {
         return new BenchConfig(TimeUnit.MILLISECONDS.toNanos(1500), TimeUnit.MILLISECONDS.toNanos(1000),
                 TimeUnit.MILLISECONDS.toNanos(500), TimeUnit.MILLISECONDS.toNanos(300), 5_000, 2_000, 20,
-                DEFAULT_PRIORITY, false);
+                DEFAULT_PRIORITY, false, true);
     }
 
     /** This configuration with another number of upgrades in section 6. */
     public BenchConfig withUpgradeRepetitions(int repetitions) {
         return new BenchConfig(periodicNs, dispatchNs, throughputNs, warmupNs, codecOps, roundTrips, repetitions,
-                priority, realtimeBursts);
+                priority, realtimeBursts, holdCpuLatency);
+    }
+
+    /** This configuration with the nodes' CPU latency request on or off. */
+    public BenchConfig withHoldCpuLatency(boolean hold) {
+        return new BenchConfig(periodicNs, dispatchNs, throughputNs, warmupNs, codecOps, roundTrips,
+                upgradeRepetitions, priority, realtimeBursts, hold);
+    }
+
+    /** A Table II scheduler (the defaults) holding the CPU latency as this configuration says. */
+    RealtimeScheduler realtimeScheduler() {
+        return realtimeScheduler(RealtimeSchedulerConfig.builder());
+    }
+
+    /** A scheduler built from {@code builder}, holding the CPU latency as this configuration says. */
+    RealtimeScheduler realtimeScheduler(RealtimeSchedulerConfig.Builder builder) {
+        return new RealtimeScheduler(builder.holdCpuLatency(holdCpuLatency).build());
     }
 
     private static long secondsToNs(double seconds) {

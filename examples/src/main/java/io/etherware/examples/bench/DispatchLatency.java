@@ -76,16 +76,16 @@ final class DispatchLatency {
         // Pinned: the HIGH dispatcher and the sender share the last CPU, so the hand-off is a local
         // wake-up instead of an inter-processor interrupt to another (possibly idle) vCPU.
         CpuSet lastCpu = CpuSet.of(Runtime.getRuntime().availableProcessors() - 1);
-        Supplier<Scheduler> pinned = () -> new RealtimeScheduler(RealtimeSchedulerConfig.builder().name("pinned")
+        Supplier<Scheduler> pinned = () -> config.realtimeScheduler(RealtimeSchedulerConfig.builder().name("pinned")
                 .threadSchedulingRule(new ThreadSchedulingRule(List.of(DispatcherSpec.nonRealtime(),
                         DispatcherSpec.fifo(ThreadSchedulingRule.HIGH_PRIORITY).on(lastCpu),
                         DispatcherSpec.fifo(ThreadSchedulingRule.MIDDLE_PRIORITY),
-                        DispatcherSpec.fifo(ThreadSchedulingRule.LOW_PRIORITY)))).build());
+                        DispatcherSpec.fifo(ThreadSchedulingRule.LOW_PRIORITY)))));
         List<Target> targets = List.of(
                 new Target("fifo", "FifoScheduler (original Etherware)",
                         () -> new NodeTarget(FifoScheduler::new, CpuSet.inherit())),
                 new Target("rt", "RealtimeScheduler (Table II)",
-                        () -> new NodeTarget(RealtimeScheduler::withDefaults, CpuSet.inherit())),
+                        () -> new NodeTarget(config::realtimeScheduler, CpuSet.inherit())),
                 new Target("rt-pinned", "RealtimeScheduler (Table II), HIGH dispatcher and sender on CPU "
                         + (Runtime.getRuntime().availableProcessors() - 1), () -> new NodeTarget(pinned, lastCpu)),
                 new Target("queue", "ArrayBlockingQueue hand-off (floor)", QueueTarget::new));

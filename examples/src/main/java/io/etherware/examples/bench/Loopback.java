@@ -11,7 +11,6 @@ import io.etherware.core.message.Text;
 import io.etherware.rt.platform.CpuSet;
 import io.etherware.rt.platform.Platform;
 import io.etherware.rt.platform.ThreadPolicy;
-import io.etherware.rt.scheduling.RealtimeScheduler;
 import io.etherware.rt.scheduling.ThreadSchedulingRule;
 import io.etherware.services.network.NetworkConfig;
 import io.etherware.services.network.NetworkMessenger;
@@ -145,10 +144,10 @@ final class Loopback {
     }
 
     private UnderLow highUnderLow(int lanes, QoS qos, long timeoutNs) throws Exception {
-        try (var b = EtherwareNode.builder().nodeId("bench-b" + lanes).scheduler(RealtimeScheduler::withDefaults)
+        try (var b = EtherwareNode.builder().nodeId("bench-b" + lanes).scheduler(config::realtimeScheduler)
                      .build().start();
              var bNet = NetworkMessenger.start(b, NetworkConfig.builder().lanes(lanes).listen("127.0.0.1", 0).build());
-             var a = EtherwareNode.builder().nodeId("bench-a" + lanes).scheduler(RealtimeScheduler::withDefaults)
+             var a = EtherwareNode.builder().nodeId("bench-a" + lanes).scheduler(config::realtimeScheduler)
                      .build().start();
              var aNet = NetworkMessenger.start(a, NetworkConfig.builder().lanes(lanes).peer(bNet.localAddress()).build())) {
             b.add(ECHO, () -> (message, context) -> context.reply(message, message.contents()));

@@ -9,7 +9,6 @@ import io.etherware.core.message.Criticality;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
 import io.etherware.core.message.QoS;
-import io.etherware.rt.scheduling.RealtimeScheduler;
 import io.etherware.rt.scheduling.RealtimeSchedulerConfig;
 import io.etherware.rt.scheduling.ThreadSchedulingRule;
 import io.etherware.services.management.Implementation;
@@ -53,8 +52,8 @@ final class UpgradeGap implements GapMeasurement {
         int measured = 0;
         int warmup = Math.min(MAX_WARMUP, repetitions);
         Chain.breaks.set(0);
-        try (var node = EtherwareNode.builder().nodeId("bench-gap").scheduler(() -> new RealtimeScheduler(
-                RealtimeSchedulerConfig.builder().threadSchedulingRule(rule).build())).build()) {
+        try (var node = EtherwareNode.builder().nodeId("bench-gap").scheduler(() -> config.realtimeScheduler(
+                RealtimeSchedulerConfig.builder().threadSchedulingRule(rule))).build()) {
             ManagementService.install(node, ManagementConfig.defaults());
             quietUpgradeLog(node.nodeId());
             node.add(LOOP, ChainV1::new);

@@ -62,7 +62,8 @@ public final class MigrateCommand implements Callable<Integer> {
         long durationNs = common.durationNs(MigrateConfig.DEFAULT_DURATION_NS / 1e9);
         MigrateConfig config;
         try {
-            config = MigrateConfig.of(durationNs, common.periodNs(), common.out("migrate"));
+            config = MigrateConfig.of(durationNs, common.periodNs(), common.out("migrate"))
+                    .withBaudRate(common.baudRate());
         } catch (IllegalArgumentException e) {
             throw new ParameterException(spec.commandLine(), e.getMessage());
         }

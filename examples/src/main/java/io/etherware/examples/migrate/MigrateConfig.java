@@ -1,5 +1,6 @@
 package io.etherware.examples.migrate;
 
+import io.etherware.examples.scenario.PlantWiring;
 import io.etherware.services.management.AccessRule;
 import io.etherware.services.management.ManagementConfig;
 import java.nio.file.Path;
@@ -17,7 +18,8 @@ import java.util.Set;
  * @param initialTheta2Rad where the pendulum starts, off upright
  * @param out              where the CSV, plots and table go
  */
-public record MigrateConfig(long durationNs, long periodNs, long migrateAtNs, double initialTheta2Rad, Path out) {
+public record MigrateConfig(long durationNs, long periodNs, long migrateAtNs, double initialTheta2Rad, Path out,
+        int baudRate) {
 
     /** A minute: 40 s on node 2, then 20 s on node 1. */
     public static final long DEFAULT_DURATION_NS = 60_000_000_000L;
@@ -40,6 +42,7 @@ public record MigrateConfig(long durationNs, long periodNs, long migrateAtNs, do
             throw new IllegalArgumentException("migrateAtNs=" + migrateAtNs
                     + ": must leave at least 2 s on each node, within durationNs=" + durationNs);
         }
+        PlantWiring.requireBaudRate(baudRate);
         if (!(Math.abs(initialTheta2Rad) < 0.3)) {
             throw new IllegalArgumentException("initialTheta2Rad=" + initialTheta2Rad + ": must be within ±0.3 rad");
         }
@@ -47,7 +50,8 @@ public record MigrateConfig(long durationNs, long periodNs, long migrateAtNs, do
 
     /** The defaults, or the migration two thirds into a run shorter than a minute. */
     public static MigrateConfig of(long durationNs, long periodNs, Path out) {
-        return new MigrateConfig(durationNs, periodNs, Math.min(DEFAULT_MIGRATE_AT_NS, durationNs * 2 / 3), 0.02, out);
+        return new MigrateConfig(durationNs, periodNs, Math.min(DEFAULT_MIGRATE_AT_NS, durationNs * 2 / 3), 0.02, out,
+                PlantWiring.DEFAULT_BAUD_RATE);
     }
 
     /**
@@ -62,6 +66,11 @@ public record MigrateConfig(long durationNs, long periodNs, long migrateAtNs, do
 
     /** A copy with the migration at another time. */
     public MigrateConfig withMigrateAtNs(long nanos) {
-        return new MigrateConfig(durationNs, periodNs, nanos, initialTheta2Rad, out);
+        return new MigrateConfig(durationNs, periodNs, nanos, initialTheta2Rad, out, baudRate);
+    }
+
+    /** A copy with another serial line rate to the DSP board. */
+    public MigrateConfig withBaudRate(int bitsPerSecond) {
+        return new MigrateConfig(durationNs, periodNs, migrateAtNs, initialTheta2Rad, out, bitsPerSecond);
     }
 }

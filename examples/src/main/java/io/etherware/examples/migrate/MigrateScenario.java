@@ -8,6 +8,7 @@ import io.etherware.examples.scenario.CycleLog;
 import io.etherware.examples.scenario.NodeProcess;
 import io.etherware.examples.scenario.PendulumRig;
 import io.etherware.examples.scenario.PlantProbe;
+import io.etherware.examples.scenario.PlantWiring;
 import io.etherware.examples.scenario.Progress;
 import io.etherware.examples.scenario.RunSummary;
 import io.etherware.examples.scenario.RunWatch;
@@ -115,7 +116,8 @@ public final class MigrateScenario {
         PendulumState initial = new PendulumState(0.0, 0.0, config.initialTheta2Rad(), 0.0);
 
         try (ControlListeners.Registration registration = ControlListeners.register(listenerName, local);
-                PendulumRig rig = new PendulumRig(MigrateConfig.PLANT_NODE, () -> scheduler, initial)) {
+                PendulumRig rig = new PendulumRig(MigrateConfig.PLANT_NODE, () -> scheduler, initial,
+                        new PlantWiring(config.baudRate()))) {
             rig.node().add(CycleReport.RECORDER, CycleReport.recorder(remote));
             rig.node().start();
             try (NetworkMessenger net = NetworkMessenger.start(rig.node(), NetworkConfig.builder()

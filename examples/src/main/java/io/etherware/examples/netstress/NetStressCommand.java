@@ -54,13 +54,6 @@ public final class NetStressCommand implements Callable<Integer> {
                     + " meets the kernel's real-time throttling).")
     private Double node2OffsetS;
 
-    @Option(names = "--rt-cpus", paramLabel = "CPUS",
-            description = "Partition the CPUs: every real-time thread of both nodes on CPUS (e.g. 1), every other"
-                    + " thread of both JVMs on the rest (default: no partition). Keep --stress-ms below the kernel's"
-                    + " real-time budget (sched_rt_runtime_us, 950 ms a second): on one CPU a longer stress"
-                    + " task is throttled with every real-time thread there.")
-    private String rtCpus;
-
     @Override
     public Integer call() throws Exception {
         StressConfig config = stress.config(spec.commandLine(), common, "netstress");
@@ -70,25 +63,12 @@ public final class NetStressCommand implements Callable<Integer> {
             throw new ParameterException(spec.commandLine(), "--node2-offset=" + node2OffsetS + " is out of range:"
                     + " from 0 to below --stress-every (" + config.stressEveryNs() / 1e9 + " s)");
         }
-        io.etherware.rt.platform.CpuSet realtimeCpus = io.etherware.rt.platform.CpuSet.inherit();
-        if (rtCpus != null) {
-            try {
-                realtimeCpus = io.etherware.rt.platform.CpuSet.parse(rtCpus);
-            } catch (IllegalArgumentException e) {
-                throw new ParameterException(spec.commandLine(), "--rt-cpus=" + e.getMessage());
-            }
-            if (!realtimeCpus.isInherit() && NetStressScenario.ordinaryCpus(realtimeCpus).length == 0) {
-                throw new ParameterException(spec.commandLine(), "--rt-cpus=" + rtCpus + " leaves no CPU for the"
-                        + " JVMs' other threads: name fewer CPUs (this machine has "
-                        + Runtime.getRuntime().availableProcessors() + ")");
-            }
-        }
         PrintWriter out = spec.commandLine().getOut();
         out.println(NetStressReport.heading(config, offsetNs));
         out.flush();
 
         var scenario = new NetStressScenario(config, offsetNs,
-                label -> Progress.onStandardError(label, config.durationNs() / 1e9), realtimeCpus);
+                label -> Progress.onStandardError(label, config.durationNs() / 1e9));
         spec.commandLine().getErr().println("warming up: each variant briefly on both nodes, without load or stress");
         spec.commandLine().getErr().flush();
         scenario.warmUp();

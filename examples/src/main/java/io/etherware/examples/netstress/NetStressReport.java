@@ -33,7 +33,7 @@ public final class NetStressReport {
                 + " across TCP on loopback; on each node a stress task on LOW Ticks every %.1f s computing %d ms (node"
                 + " 2's %.1f s after node 1's) and %d load threads allocating", config.durationNs() / 1e9,
                 config.periodNs() / 1_000_000, config.stressEveryNs() / 1e9, config.stressWorkNs() / 1_000_000,
-                node2OffsetNs / 1e9, config.loadThreads());
+                node2OffsetNs / 1e9, config.loadThreads()) + StressReport.setup(config);
     }
 
     /** The side-by-side table of {@code runs} with their {@code summaries}. */

@@ -13,6 +13,7 @@ import io.etherware.examples.scenario.GcActivity;
 import io.etherware.examples.scenario.NodeProcess;
 import io.etherware.examples.scenario.PendulumRig;
 import io.etherware.examples.scenario.PlantProbe;
+import io.etherware.examples.scenario.PlantWiring;
 import io.etherware.examples.scenario.Progress;
 import io.etherware.examples.scenario.RunSummary;
 import io.etherware.examples.scenario.RunWatch;
@@ -28,6 +29,7 @@ import io.etherware.examples.stress.StressScenario.Variant;
 import io.etherware.pendulum.components.PendulumController;
 import io.etherware.pendulum.plant.PendulumState;
 import io.etherware.rt.platform.ThreadGrant;
+import io.etherware.rt.platform.CpuPartition;
 import io.etherware.rt.platform.CpuSet;
 import io.etherware.rt.platform.Platform;
 import io.etherware.rt.platform.ThreadPolicy;
@@ -104,22 +106,15 @@ public final class NetStressScenario {
 
     /**
      * A scenario with {@code config}, node 2's stress {@code node2OffsetNs} after node 1's (0: at
-     * the same times); {@code progress} makes the progress line of each run from its label.
-     */
-    public NetStressScenario(StressConfig config, long node2OffsetNs, Function<String, Progress> progress) {
-        this(config, node2OffsetNs, progress, CpuSet.inherit());
-    }
-
-    /**
-     * The same with the CPUs partitioned: every real-time thread of both nodes (dispatchers,
-     * network threads, Notifiers, the board and the probe) on {@code realtimeCpus}, every other
+     * the same times); {@code progress} makes the progress line of each run from its label. With
+     * {@code config.realtimeCpus()} named, the CPUs are partitioned: every real-time thread of both
+     * nodes (dispatchers, network threads, Notifiers, the board and the probe) there, every other
      * thread of both JVMs on the remaining CPUs, so that no ordinary Java thread waits, runnable,
      * behind a real-time one (a safepoint waits for every such thread, stopping the real-time ones
      * too).
      */
-    public NetStressScenario(StressConfig config, long node2OffsetNs, Function<String, Progress> progress,
-                             CpuSet realtimeCpus) {
-        this.realtimeCpus = Objects.requireNonNull(realtimeCpus, "realtimeCpus");
+    public NetStressScenario(StressConfig config, long node2OffsetNs, Function<String, Progress> progress) {
+        this.realtimeCpus = config.realtimeCpus();
         this.config = Objects.requireNonNull(config, "config");
         if (node2OffsetNs < 0 || node2OffsetNs >= config.stressEveryNs()) {
             throw new IllegalArgumentException("node2OffsetNs=" + node2OffsetNs + ": must be within 0 .. stressEveryNs="
@@ -152,12 +147,6 @@ public final class NetStressScenario {
         NetworkConfig.Builder builder = NetworkConfig.builder().codec(codec)
                 .listen(new InetSocketAddress("127.0.0.1", 0));
         return variant == Variant.FIFO ? builder.threads(ThreadPolicy.NON_REALTIME) : builder.threadCpus(realtimeCpus);
-    }
-
-    /** The CPUs not in {@code realtimeCpus}, of those this JVM may use; empty if none is left. */
-    public static int[] ordinaryCpus(CpuSet realtimeCpus) {
-        return java.util.stream.IntStream.range(0, Runtime.getRuntime().availableProcessors())
-                .filter(cpu -> !realtimeCpus.contains(cpu)).toArray();
     }
 
     /** What the network threads are in {@code variant}, in a few words. */
@@ -193,12 +182,17 @@ public final class NetStressScenario {
         long periodNs = settings.periodNs();
         int capacity = Math.toIntExact(settings.durationNs() / periodNs + SLACK);
         Files.createDirectories(settings.out());
-        NodeClock clock = NodeClock.system();
-        if (!realtimeCpus.isInherit()) {
-            // Every thread of this JVM now, and node 2's JVM (it inherits this affinity), off the
-            // real-time CPUs; the real-time threads below take them explicitly.
-            Platform.current().moveProcessThreads(CpuSet.of(ordinaryCpus(realtimeCpus)));
+        // Every ordinary thread of this JVM, and node 2's JVM (it inherits this thread's affinity),
+        // off the real-time CPUs, in both runs; the real-time scheduler shares the partition.
+        try (CpuPartition partition = realtimeCpus.isInherit() ? null
+                : Platform.current().partitionCpus(realtimeCpus)) {
+            return execute(variant, settings, line, logSuffix, periodNs, capacity);
         }
+    }
+
+    private NetStressRun execute(Variant variant, StressConfig settings, Progress line, String logSuffix, long periodNs,
+            int capacity) throws IOException, InterruptedException {
+        NodeClock clock = NodeClock.system();
         SimThreads threads = new SimThreads(realtimeCpus);
         ScenarioEvents events = new ScenarioEvents();
         CycleLog cycles = new CycleLog(capacity, periodNs);
@@ -209,7 +203,8 @@ public final class NetStressScenario {
         System.gc(); // each run starts from a collected heap, so the runs see comparable collector work
 
         GcActivity gcBefore = GcActivity.now();
-        try (PendulumRig rig = new PendulumRig(PLANT_NODE, () -> scheduler, initial)) {
+        try (PendulumRig rig = new PendulumRig(PLANT_NODE, () -> scheduler, initial,
+                new PlantWiring(settings.baudRate()))) {
             rig.node().add(CycleReport.RECORDER, CycleReport.recorder(cycles));
             rig.node().add(StressComponent.PROFILE, () -> new StressComponent(settings.stressWorkNs(), events));
             rig.node().start();

@@ -9,17 +9,18 @@ import io.etherware.pendulum.components.DspProxy;
 import io.etherware.pendulum.components.PendulumController;
 import io.etherware.pendulum.control.GainSet;
 import io.etherware.pendulum.dsp.DspBoard;
-import io.etherware.pendulum.dsp.DspBoardConfig;
 import io.etherware.pendulum.plant.PendulumParameters;
 import io.etherware.pendulum.plant.PendulumState;
 import io.etherware.pendulum.serial.DspClient;
 import io.etherware.pendulum.serial.SimulatedSerialLink;
+import io.etherware.rt.platform.AbsoluteSleeper;
 import java.util.Objects;
 import java.util.function.Supplier;
 
 /**
  * The pendulum of paper Section VI as the scenarios wire it (Fig. 7 and 10): a {@link DspBoard}
- * stepping the plant in real time behind a 115200-baud {@link SimulatedSerialLink}, and one
+ * stepping the plant in real time behind a {@link SimulatedSerialLink} ({@link PlantWiring}: 115200
+ * baud unless the scenario says otherwise), and one
  * {@link EtherwareNode} hosting the {@link DspProxy} on the host end of the link and the
  * {@link PendulumController}. The node's scheduler is the scenario's choice; the board always
  * runs at {@link SimThreads#BOARD_PRIORITY} so the physical world keeps its time whatever the
@@ -34,7 +35,7 @@ public final class PendulumRig implements AutoCloseable {
     /** The plant of the paper (Section VI-A). */
     public static final PendulumParameters PARAMETERS = PendulumParameters.defaults();
 
-    private final SimulatedSerialLink link = SimulatedSerialLink.realTime(SimulatedSerialLink.Config.defaults());
+    private final SimulatedSerialLink link;
     private final DspBoard board;
     private final EtherwareNode node;
     private final NodeClock clock = NodeClock.system();
@@ -45,8 +46,8 @@ public final class PendulumRig implements AutoCloseable {
      * about each cycle.
      */
     public PendulumRig(String nodeId, Supplier<? extends Scheduler> scheduler, PendulumState initial, GainSet gains,
-            ControlListener listener) {
-        this(nodeId, scheduler, initial);
+            ControlListener listener, PlantWiring wiring) {
+        this(nodeId, scheduler, initial, wiring);
         node.add(PendulumController.DEFAULT_PROFILE,
                 PendulumController.factory(ControllerConfig.defaults(), gains, listener));
     }
@@ -55,10 +56,12 @@ public final class PendulumRig implements AutoCloseable {
      * A rig whose node hosts only the {@link DspProxy}: the controller runs elsewhere (paper
      * Fig. 10, where the controller is on another node than the DSPProxy).
      */
-    public PendulumRig(String nodeId, Supplier<? extends Scheduler> scheduler, PendulumState initial) {
+    public PendulumRig(String nodeId, Supplier<? extends Scheduler> scheduler, PendulumState initial,
+            PlantWiring wiring) {
         Objects.requireNonNull(scheduler, "scheduler");
-        board = new DspBoard(DspBoardConfig.defaults(), PARAMETERS, initial, link.boardEnd());
-        DspClient client = new DspClient(link.hostEnd(), clock, DspClient.Config.defaults());
+        link = SimulatedSerialLink.realTime(wiring.link());
+        board = new DspBoard(wiring.board(), PARAMETERS, initial, link.boardEnd());
+        DspClient client = new DspClient(link.hostEnd(), clock, wiring.client());
         node = EtherwareNode.builder().nodeId(nodeId).scheduler(scheduler).clock(clock).build();
         node.add(DspProxy.DEFAULT_PROFILE, DspProxy.factory(client));
     }
@@ -98,7 +101,8 @@ public final class PendulumRig implements AutoCloseable {
      */
     public long startBoard(SimThreads threads) {
         long originNs = clock.nanoTime();
-        board.startRealTime(clock, threads.fifo("dsp-board", SimThreads.BOARD_PRIORITY));
+        board.startRealTime(clock, threads.fifo("dsp-board", SimThreads.BOARD_PRIORITY),
+                AbsoluteSleeper.forCurrentThread(clock));
         return originNs;
     }
 

@@ -8,7 +8,7 @@ import picocli.CommandLine.ParameterException;
 import picocli.CommandLine.Spec;
 
 /**
- * The options every scenario takes ({@code --duration}, {@code --period-ms}, {@code --out}), as a
+ * The options every scenario takes ({@code --duration}, {@code --period-ms}, {@code --baud}, {@code --out}), as a
  * picocli mixin. Each scenario supplies its own default duration.
  *
  * <p>Filled in by picocli on the command's thread; not thread-safe.
@@ -29,6 +29,11 @@ public final class ScenarioOptions {
             description = "Control period in milliseconds: the controller's Tick period (default: ${DEFAULT-VALUE},"
                     + " the paper's).")
     private long periodMs;
+
+    @Option(names = "--baud", paramLabel = "BITS_PER_S", defaultValue = "115200",
+            description = "Serial line rate to the simulated DSP board (default: ${DEFAULT-VALUE}, the paper's);"
+                    + " the board's cycle and the proxy's reply timeout scale with it. A 1 ms loop needs 921600.")
+    private int baudRate;
 
     @Option(names = "--out", paramLabel = "DIR",
             description = "Directory for the CSV, plots and table (default: target/scenarios/<scenario>).")
@@ -51,6 +56,18 @@ public final class ScenarioOptions {
                     + " is out of range: give the control period in milliseconds, from 1 to 1000 (the paper: 15)");
         }
         return TimeUnit.MILLISECONDS.toNanos(periodMs);
+    }
+
+    /** The serial line rate; a bad value is a usage error. */
+    public int baudRate() {
+        try {
+            PlantWiring.requireBaudRate(baudRate);
+        } catch (IllegalArgumentException e) {
+            throw new ParameterException(spec.commandLine(), "--baud=" + baudRate + " is out of range: give bits per"
+                    + " second from " + PlantWiring.MIN_BAUD_RATE + " to " + PlantWiring.MAX_BAUD_RATE + " (the paper: "
+                    + PlantWiring.DEFAULT_BAUD_RATE + "; 921600 for a 1 ms loop)");
+        }
+        return baudRate;
     }
 
     /** The output directory, {@code target/scenarios/<scenario>} when not given. */

@@ -26,11 +26,16 @@ public final class Schedulers {
         return etherwareRt(io.etherware.rt.platform.CpuSet.inherit());
     }
 
-    /** {@link #etherwareRt()} with its real-time dispatchers on {@code realtimeCpus} (inherit: every CPU). */
+    /**
+     * {@link #etherwareRt()} with the JVM's CPUs partitioned ({@code RealtimeSchedulerConfig.realtimeCpus}):
+     * its real-time dispatchers, and every real-time thread that asks for inherited CPUs, on
+     * {@code realtimeCpus}, every other thread of the JVM elsewhere (inherit: no partition).
+     */
     public static RealtimeScheduler etherwareRt(io.etherware.rt.platform.CpuSet realtimeCpus) {
         return new RealtimeScheduler(RealtimeSchedulerConfig.builder()
                 .name("rt")
-                .threadSchedulingRule(ThreadSchedulingRule.tableII().withRealtimeOn(realtimeCpus))
+                .threadSchedulingRule(ThreadSchedulingRule.tableII())
+                .realtimeCpus(realtimeCpus)
                 .placementRule(new CriticalityDeadlinePlacement())
                 .build());
     }

@@ -1,5 +1,7 @@
 package io.etherware.examples.stress;
 
+import io.etherware.examples.scenario.PlantWiring;
+import io.etherware.rt.platform.CpuSet;
 import java.nio.file.Path;
 import java.util.Objects;
 
@@ -15,9 +17,13 @@ import java.util.Objects;
  * @param loadThreads       ordinary threads that load the cores and allocate (0: none)
  * @param initialTheta2Rad  where the pendulum starts, off upright
  * @param out               where the CSV, plots and table go
+ * @param baudRate          the serial link's rate to the DSP board (the paper: 115200); the board's
+ *                          cycle and the proxy's reply timeout scale with it ({@link PlantWiring})
+ * @param realtimeCpus      the CPU partition's real-time CPUs (every real-time thread there, every
+ *                          other thread elsewhere), or {@link CpuSet#inherit()} for no partition
  */
 public record StressConfig(long durationNs, long periodNs, long stressEveryNs, long stressWorkNs, long firstStressNs,
-        int loadThreads, double initialTheta2Rad, Path out) {
+        int loadThreads, double initialTheta2Rad, Path out, int baudRate, CpuSet realtimeCpus) {
 
     /** 20 s per run: four stress activations, enough to see both outcomes. */
     public static final long DEFAULT_DURATION_NS = 20_000_000_000L;
@@ -36,6 +42,7 @@ public record StressConfig(long durationNs, long periodNs, long stressEveryNs, l
 
     public StressConfig {
         Objects.requireNonNull(out, "out");
+        Objects.requireNonNull(realtimeCpus, "realtimeCpus");
         if (durationNs < 1_000_000_000L || durationNs > MAX_DURATION_NS) {
             throw new IllegalArgumentException("durationNs=" + durationNs + ": must be within 1 s .. 1 h");
         }
@@ -56,6 +63,7 @@ public record StressConfig(long durationNs, long periodNs, long stressEveryNs, l
         if (loadThreads < 0 || loadThreads > 256) {
             throw new IllegalArgumentException("loadThreads=" + loadThreads + ": must be within 0..256");
         }
+        PlantWiring.requireBaudRate(baudRate);
         if (!(Math.abs(initialTheta2Rad) < 0.3)) {
             throw new IllegalArgumentException("initialTheta2Rad=" + initialTheta2Rad
                     + ": must be within ±0.3 rad (the controller balances, it does not swing up)");
@@ -66,36 +74,48 @@ public record StressConfig(long durationNs, long periodNs, long stressEveryNs, l
     public static StressConfig defaults(Path out) {
         return new StressConfig(DEFAULT_DURATION_NS, DEFAULT_PERIOD_NS, DEFAULT_STRESS_EVERY_NS,
                 DEFAULT_STRESS_WORK_NS, DEFAULT_FIRST_STRESS_NS, Runtime.getRuntime().availableProcessors(),
-                DEFAULT_INITIAL_THETA2_RAD, out);
+                DEFAULT_INITIAL_THETA2_RAD, out, PlantWiring.DEFAULT_BAUD_RATE, CpuSet.inherit());
     }
 
     /** A copy with another run length. */
     public StressConfig withDurationNs(long nanos) {
         return new StressConfig(nanos, periodNs, stressEveryNs, stressWorkNs, firstStressNs, loadThreads,
-                initialTheta2Rad, out);
+                initialTheta2Rad, out, baudRate, realtimeCpus);
     }
 
     /** A copy with another control period. */
     public StressConfig withPeriodNs(long nanos) {
         return new StressConfig(durationNs, nanos, stressEveryNs, stressWorkNs, firstStressNs, loadThreads,
-                initialTheta2Rad, out);
+                initialTheta2Rad, out, baudRate, realtimeCpus);
     }
 
     /** A copy with another stress period and work. */
     public StressConfig withStress(long everyNs, long workNs) {
         return new StressConfig(durationNs, periodNs, everyNs, workNs, firstStressNs, loadThreads, initialTheta2Rad,
-                out);
+                out, baudRate, realtimeCpus);
     }
 
     /** A copy with the first stress Tick at another time after the board starts. */
     public StressConfig withFirstStressNs(long nanos) {
         return new StressConfig(durationNs, periodNs, stressEveryNs, stressWorkNs, nanos, loadThreads,
-                initialTheta2Rad, out);
+                initialTheta2Rad, out, baudRate, realtimeCpus);
     }
 
     /** A copy with another number of load threads. */
     public StressConfig withLoadThreads(int threads) {
         return new StressConfig(durationNs, periodNs, stressEveryNs, stressWorkNs, firstStressNs, threads,
-                initialTheta2Rad, out);
+                initialTheta2Rad, out, baudRate, realtimeCpus);
+    }
+
+    /** A copy with another serial line rate. */
+    public StressConfig withBaudRate(int bitsPerSecond) {
+        return new StressConfig(durationNs, periodNs, stressEveryNs, stressWorkNs, firstStressNs, loadThreads,
+                initialTheta2Rad, out, bitsPerSecond, realtimeCpus);
+    }
+
+    /** A copy with the CPUs partitioned: real-time threads on {@code cpus} (inherit: no partition). */
+    public StressConfig withRealtimeCpus(CpuSet cpus) {
+        return new StressConfig(durationNs, periodNs, stressEveryNs, stressWorkNs, firstStressNs, loadThreads,
+                initialTheta2Rad, out, baudRate, cpus);
     }
 }

@@ -1,6 +1,8 @@
 package io.etherware.examples.stress;
 
 import io.etherware.examples.scenario.ScenarioOptions;
+import io.etherware.rt.platform.CpuSet;
+import java.util.stream.IntStream;
 import picocli.CommandLine;
 import picocli.CommandLine.Option;
 import picocli.CommandLine.ParameterException;
@@ -23,6 +25,13 @@ public final class StressOptions {
     @Option(names = "--load-threads", paramLabel = "N",
             description = "Ordinary threads that load the cores and allocate (default: one per core).")
     private Integer loadThreads;
+
+    @Option(names = "--rt-cpus", paramLabel = "CPUS",
+            description = "Partition the CPUs: every real-time thread (dispatchers, Notifier, network threads, the"
+                    + " board) on CPUS (e.g. 1), every other thread of the JVM(s) on the rest, in both runs (default:"
+                    + " no partition). Keep --stress-ms below the kernel's real-time budget (sched_rt_runtime_us,"
+                    + " 950 ms a second): on one CPU a longer stress task is throttled with every real-time thread there.")
+    private String rtCpus;
 
     @Option(names = "--only", paramLabel = "RUN",
             description = "Run only one of: ${COMPLETION-CANDIDATES} (default: both, FIFO first).")
@@ -59,10 +68,25 @@ public final class StressOptions {
             throw new ParameterException(commandLine, "--stress-every=" + stressEveryS
                     + " s is shorter than the control period --period-ms");
         }
+        CpuSet realtimeCpus = CpuSet.inherit();
+        if (rtCpus != null) {
+            try {
+                realtimeCpus = CpuSet.parse(rtCpus);
+            } catch (IllegalArgumentException e) {
+                throw new ParameterException(commandLine, "--rt-cpus=" + e.getMessage());
+            }
+            int cpus = Runtime.getRuntime().availableProcessors();
+            if (!realtimeCpus.isInherit() && IntStream.range(0, cpus).allMatch(realtimeCpus::contains)) {
+                throw new ParameterException(commandLine, "--rt-cpus=" + rtCpus + " leaves no CPU for the"
+                        + " JVM's other threads: name fewer CPUs (this machine has " + cpus + ")");
+            }
+        }
         return StressConfig.defaults(common.out(scenario))
                 .withDurationNs(common.durationNs(StressConfig.DEFAULT_DURATION_NS / 1e9))
                 .withPeriodNs(periodNs)
                 .withStress(stressEveryNs, stressMs * 1_000_000L)
-                .withLoadThreads(threads);
+                .withLoadThreads(threads)
+                .withBaudRate(common.baudRate())
+                .withRealtimeCpus(realtimeCpus);
     }
 }

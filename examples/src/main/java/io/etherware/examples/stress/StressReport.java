@@ -37,7 +37,13 @@ public final class StressReport {
         return String.format(Locale.ROOT, "stress (paper Section VI-B): %.0f s per run; controller on HIGH Ticks every %d ms;"
                 + " stress task on LOW Ticks every %.1f s computing %d ms; %d load threads allocating",
                 config.durationNs() / 1e9, config.periodNs() / 1_000_000, config.stressEveryNs() / 1e9,
-                config.stressWorkNs() / 1_000_000, config.loadThreads());
+                config.stressWorkNs() / 1_000_000, config.loadThreads()) + setup(config);
+    }
+
+    /** The serial line rate and the CPU partition, as they appear in a heading. */
+    public static String setup(StressConfig config) {
+        return "; serial link " + config.baudRate() + " baud" + (config.realtimeCpus().isInherit() ? ""
+                : "; CPUs partitioned, real-time threads on " + config.realtimeCpus());
     }
 
     /** Writes everything; returns the files written, in order. */

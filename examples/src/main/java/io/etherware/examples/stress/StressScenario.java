@@ -9,6 +9,7 @@ import io.etherware.examples.scenario.CycleLog;
 import io.etherware.examples.scenario.GcActivity;
 import io.etherware.examples.scenario.PendulumRig;
 import io.etherware.examples.scenario.PlantProbe;
+import io.etherware.examples.scenario.PlantWiring;
 import io.etherware.examples.scenario.Progress;
 import io.etherware.examples.scenario.RunSummary;
 import io.etherware.examples.scenario.RunWatch;
@@ -20,6 +21,9 @@ import io.etherware.examples.scenario.SimThreads;
 import io.etherware.pendulum.components.PendulumController;
 import io.etherware.pendulum.control.GainSet;
 import io.etherware.pendulum.plant.PendulumState;
+import io.etherware.rt.platform.CpuPartition;
+import io.etherware.rt.platform.CpuSet;
+import io.etherware.rt.platform.Platform;
 import io.etherware.rt.platform.ThreadGrant;
 import io.etherware.rt.scheduling.DispatcherStats;
 import io.etherware.rt.scheduling.RealtimeScheduler;
@@ -125,20 +129,31 @@ public final class StressScenario {
     }
 
     private ScenarioRun execute(Variant variant, StressConfig settings, Progress line) throws InterruptedException {
+        CpuSet realtimeCpus = settings.realtimeCpus();
+        // The same partition in both runs; the real-time scheduler shares it.
+        try (CpuPartition partition = realtimeCpus.isInherit() ? null
+                : Platform.current().partitionCpus(realtimeCpus)) {
+            return executePartitioned(variant, settings, line);
+        }
+    }
+
+    private ScenarioRun executePartitioned(Variant variant, StressConfig settings, Progress line)
+            throws InterruptedException {
         long periodNs = settings.periodNs();
         int capacity = Math.toIntExact(settings.durationNs() / periodNs + SLACK);
         NodeClock clock = NodeClock.system();
-        SimThreads threads = new SimThreads();
+        SimThreads threads = new SimThreads(settings.realtimeCpus());
         ScenarioEvents events = new ScenarioEvents();
         CycleLog cycles = new CycleLog(capacity, periodNs);
-        RealtimeScheduler realtime = variant == Variant.RT ? Schedulers.etherwareRt() : null;
+        RealtimeScheduler realtime = variant == Variant.RT ? Schedulers.etherwareRt(settings.realtimeCpus()) : null;
         Scheduler scheduler = realtime != null ? realtime : Schedulers.original();
         PendulumState initial = new PendulumState(0.0, 0.0, settings.initialTheta2Rad(), 0.0);
         GainSet gains = GainSet.v1Soft(PendulumRig.PARAMETERS);
         System.gc(); // each run starts from a collected heap, so the runs see comparable collector work
 
         GcActivity gcBefore = GcActivity.now();
-        try (PendulumRig rig = new PendulumRig("stress-" + variant.key(), () -> scheduler, initial, gains, cycles)) {
+        try (PendulumRig rig = new PendulumRig("stress-" + variant.key(), () -> scheduler, initial, gains, cycles,
+                new PlantWiring(settings.baudRate()))) {
             rig.node().add(StressComponent.PROFILE, () -> new StressComponent(settings.stressWorkNs(), events));
             // The node's Notifier: SCHED_FIFO 82, above every dispatcher, in both runs.
             Notifier notifier = Notifier.install(rig.node(), NotifierConfig.defaults());

@@ -74,7 +74,8 @@ public final class UpgradeCommand implements Callable<Integer> {
             throw new ParameterException(spec.commandLine(), "--jar=" + plugin + " is not a file: give the plugin jar"
                     + " with controller V2, or build it with ./mvnw -pl examples -am -DskipTests package");
         }
-        UpgradeConfig config = UpgradeConfig.of(durationNs, common.periodNs(), plugin, common.out("upgrade"));
+        UpgradeConfig config = UpgradeConfig.of(durationNs, common.periodNs(), plugin, common.out("upgrade"))
+                .withBaudRate(common.baudRate());
         if (upgradeAtS != null) {
             long atNs = Math.round(upgradeAtS * 1e9);
             if (!(atNs >= 1_000_000_000L && atNs <= durationNs - 1_000_000_000L)) {

@@ -1,5 +1,6 @@
 package io.etherware.examples.upgrade;
 
+import io.etherware.examples.scenario.PlantWiring;
 import java.nio.file.Path;
 import java.util.Objects;
 
@@ -15,7 +16,7 @@ import java.util.Objects;
  * @param out              where the CSV, plots and table go
  */
 public record UpgradeConfig(long durationNs, long periodNs, long upgradeAtNs, Path jar, double initialTheta2Rad,
-        Path out) {
+        Path out, int baudRate) {
 
     /** A minute: 30 s of V1, then 30 s of V2. */
     public static final long DEFAULT_DURATION_NS = 60_000_000_000L;
@@ -41,6 +42,7 @@ public record UpgradeConfig(long durationNs, long periodNs, long upgradeAtNs, Pa
             throw new IllegalArgumentException("upgradeAtNs=" + upgradeAtNs
                     + ": must leave at least 1 s of V1 before and 1 s of V2 after, within durationNs=" + durationNs);
         }
+        PlantWiring.requireBaudRate(baudRate);
         if (!(Math.abs(initialTheta2Rad) < 0.3)) {
             throw new IllegalArgumentException("initialTheta2Rad=" + initialTheta2Rad + ": must be within ±0.3 rad");
         }
@@ -49,11 +51,16 @@ public record UpgradeConfig(long durationNs, long periodNs, long upgradeAtNs, Pa
     /** The defaults, or the upgrade half way through a run shorter than a minute. */
     public static UpgradeConfig of(long durationNs, long periodNs, Path jar, Path out) {
         return new UpgradeConfig(durationNs, periodNs, Math.min(DEFAULT_UPGRADE_AT_NS, durationNs / 2), jar, 0.02,
-                out);
+                out, PlantWiring.DEFAULT_BAUD_RATE);
     }
 
     /** A copy with the upgrade at another time. */
     public UpgradeConfig withUpgradeAtNs(long nanos) {
-        return new UpgradeConfig(durationNs, periodNs, nanos, jar, initialTheta2Rad, out);
+        return new UpgradeConfig(durationNs, periodNs, nanos, jar, initialTheta2Rad, out, baudRate);
+    }
+
+    /** A copy with another serial line rate to the DSP board. */
+    public UpgradeConfig withBaudRate(int bitsPerSecond) {
+        return new UpgradeConfig(durationNs, periodNs, upgradeAtNs, jar, initialTheta2Rad, out, bitsPerSecond);
     }
 }

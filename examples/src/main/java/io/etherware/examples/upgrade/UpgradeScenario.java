@@ -7,6 +7,7 @@ import io.etherware.examples.scenario.ControlListeners;
 import io.etherware.examples.scenario.CycleLog;
 import io.etherware.examples.scenario.PendulumRig;
 import io.etherware.examples.scenario.PlantProbe;
+import io.etherware.examples.scenario.PlantWiring;
 import io.etherware.examples.scenario.Progress;
 import io.etherware.examples.scenario.RunSummary;
 import io.etherware.examples.scenario.RunWatch;
@@ -97,7 +98,8 @@ public final class UpgradeScenario {
         GainSet v1 = GainSet.v1Soft(PendulumRig.PARAMETERS);
 
         try (ControlListeners.Registration registration = ControlListeners.register(listenerName, cycles);
-                PendulumRig rig = new PendulumRig("upgrade", () -> scheduler, initial, v1, cycles)) {
+                PendulumRig rig = new PendulumRig("upgrade", () -> scheduler, initial, v1, cycles,
+                        new PlantWiring(config.baudRate()))) {
             Notifier notifier = Notifier.install(rig.node(), NotifierConfig.defaults());
             ManagementService.install(rig.node(), ManagementConfig.builder()
                     .allowDirectory(plugin.jar().getParent()).trustedSigner(plugin.certificate()).build());

@@ -25,8 +25,8 @@ class BenchCommandIT {
 
     /** Every row the report must have, by id. */
     private static final List<String> ROW_IDS = List.of(
-            "periodic.notifier.idle", "periodic.executor.idle", "periodic.cyclictest.idle",
-            "periodic.notifier.loaded", "periodic.executor.loaded", "periodic.cyclictest.loaded",
+            "periodic.notifier.idle", "periodic.notifier-park.idle", "periodic.executor.idle", "periodic.cyclictest.idle",
+            "periodic.notifier.loaded", "periodic.notifier-park.loaded", "periodic.executor.loaded", "periodic.cyclictest.loaded",
             "dispatch.fifo.idle", "dispatch.fifo.flood", "dispatch.rt.idle", "dispatch.rt.flood",
             "dispatch.rt-pinned.idle", "dispatch.rt-pinned.flood", "dispatch.queue.idle", "dispatch.queue.flood",
             "throughput.fifo", "throughput.rt", "throughput.queue",

@@ -1,5 +1,6 @@
 package io.etherware.pendulum.dsp;
 
+import io.etherware.core.time.DeadlineSleeper;
 import io.etherware.core.time.NodeClock;
 import io.etherware.pendulum.plant.PendulumParameters;
 import io.etherware.pendulum.plant.PendulumPlant;
@@ -101,15 +102,28 @@ public final class DspBoard implements AutoCloseable {
     }
 
     /**
-     * Real-time mode: starts a thread that steps the board against {@code clock}.
+     * Real-time mode: starts a thread that steps the board against {@code clock}, parking between cycles.
      *
      * @param threadFactory makes the stepping thread, e.g. one that raises its priority
      */
-    public synchronized void startRealTime(NodeClock clock, ThreadFactory threadFactory) {
+    public void startRealTime(NodeClock clock, ThreadFactory threadFactory) {
+        startRealTime(clock, threadFactory, DeadlineSleeper.parking(clock));
+    }
+
+    /**
+     * Real-time mode: starts a thread that steps the board against {@code clock}, sleeping between
+     * cycles with {@code sleeper} (e.g. {@code AbsoluteSleeper}, {@code clock_nanosleep} to the
+     * cycle boundary). The sleeper is the board thread's alone; it must return within a cycle or so
+     * ({@link #close()} waits for it).
+     *
+     * @param threadFactory makes the stepping thread, e.g. one that raises its priority
+     */
+    public synchronized void startRealTime(NodeClock clock, ThreadFactory threadFactory, DeadlineSleeper sleeper) {
         Objects.requireNonNull(clock, "clock");
+        Objects.requireNonNull(sleeper, "sleeper");
         markStarted(clock.nanoTime());
         running = true;
-        thread = threadFactory.newThread(() -> runRealTime(clock));
+        thread = threadFactory.newThread(() -> runRealTime(clock, sleeper));
         thread.start();
     }
 
@@ -130,16 +144,15 @@ public final class DspBoard implements AutoCloseable {
         originNs = nowNs;
     }
 
-    private void runRealTime(NodeClock clock) {
+    private void runRealTime(NodeClock clock, DeadlineSleeper sleeper) {
         LOG.info("DSP board running in real time: step {} µs, watchdog {} ms, link {}",
                 config.stepNs() / 1_000, config.watchdogTimeoutNs() / 1_000_000, link.name());
         while (running) {
             advanceTo(clock.nanoTime());
             long nextNs = nextCycleNs();
-            long sleepNs = nextNs - config.maxSpinNs() - clock.nanoTime();
-            while (running && sleepNs > 0) {
-                LockSupport.parkNanos(sleepNs);
-                sleepNs = nextNs - config.maxSpinNs() - clock.nanoTime();
+            long wakeNs = nextNs - config.maxSpinNs();
+            while (running && clock.nanoTime() - wakeNs < 0) {
+                sleeper.sleepUntil(wakeNs);
             }
             // Bounded spin for the last stretch only; a late wake is caught up, not spun for.
             long spinUntilNs = Math.min(nextNs, clock.nanoTime() + config.maxSpinNs());

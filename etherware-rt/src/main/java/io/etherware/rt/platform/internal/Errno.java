@@ -9,21 +9,26 @@ import java.util.Map;
  */
 public final class Errno {
     public static final int EPERM = 1;
+    public static final int ENOENT = 2;
     public static final int ESRCH = 3;
+    public static final int EINTR = 4;
+    public static final int EIO = 5;
     public static final int EAGAIN = 11;
     public static final int ENOMEM = 12;
+    public static final int EACCES = 13;
     public static final int EFAULT = 14;
     public static final int EINVAL = 22;
     public static final int ENOSYS = 38;
 
     private static final Map<Integer, String[]> NAMES = Map.ofEntries(
             Map.entry(EPERM, new String[] {"EPERM", "Operation not permitted"}),
-            Map.entry(2, new String[] {"ENOENT", "No such file or directory"}),
+            Map.entry(ENOENT, new String[] {"ENOENT", "No such file or directory"}),
             Map.entry(ESRCH, new String[] {"ESRCH", "No such process"}),
-            Map.entry(4, new String[] {"EINTR", "Interrupted system call"}),
+            Map.entry(EINTR, new String[] {"EINTR", "Interrupted system call"}),
+            Map.entry(EIO, new String[] {"EIO", "Input/output error"}),
             Map.entry(EAGAIN, new String[] {"EAGAIN", "Resource temporarily unavailable"}),
             Map.entry(ENOMEM, new String[] {"ENOMEM", "Cannot allocate memory"}),
-            Map.entry(13, new String[] {"EACCES", "Permission denied"}),
+            Map.entry(EACCES, new String[] {"EACCES", "Permission denied"}),
             Map.entry(EFAULT, new String[] {"EFAULT", "Bad address"}),
             Map.entry(16, new String[] {"EBUSY", "Device or resource busy"}),
             Map.entry(EINVAL, new String[] {"EINVAL", "Invalid argument"}),

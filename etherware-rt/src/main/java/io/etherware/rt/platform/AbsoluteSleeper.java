@@ -1,0 +1,67 @@
+package io.etherware.rt.platform;
+
+import io.etherware.core.time.DeadlineSleeper;
+import io.etherware.core.time.NodeClock;
+import io.etherware.rt.platform.internal.LinuxClock;
+import java.lang.foreign.Arena;
+import java.lang.foreign.MemorySegment;
+import java.util.Objects;
+import java.util.Optional;
+
+/**
+ * Sleeps to an absolute time of {@link System#nanoTime()} the way {@code cyclictest} does:
+ * {@code clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, ...)}, through the FFM API. The kernel
+ * wakes the thread at the deadline itself, with no relative time computed before the call (which a
+ * preemption between reading the clock and sleeping would make late), and a SCHED_FIFO thread has
+ * no timer slack.
+ *
+ * <p>The sleep cannot be ended early: neither {@link java.util.concurrent.locks.LockSupport#unpark}
+ * nor an interrupt reaches a thread inside it. Sleep to deadlines a period away or less, and where
+ * another thread must be able to wake the sleeper, park first and sleep here only for the last
+ * stretch (the Notifier does). A thread inside the call is in native code, so a safepoint does not
+ * wait for it.
+ *
+ * <p>{@link #forCurrentThread} falls back to {@link DeadlineSleeper#parking} where the call is not
+ * usable (not Linux, native access denied, a clock that is not the system's); {@link #describe}
+ * says which. An instance belongs to the thread that sleeps with it; it allocates nothing per sleep.
+ */
+public final class AbsoluteSleeper implements DeadlineSleeper {
+
+    private final MemorySegment timespec = Arena.ofAuto().allocate(LinuxClock.TIMESPEC_BYTES, 8);
+
+    private AbsoluteSleeper() {
+    }
+
+    /** Whether {@code clock_nanosleep} can be used in this JVM. */
+    public static boolean isAvailable() {
+        return LinuxClock.isAvailable();
+    }
+
+    /** Why it cannot; empty when it can. */
+    public static Optional<String> unavailableReason() {
+        return LinuxClock.unavailableReason();
+    }
+
+    /**
+     * An absolute sleeper for a thread on {@code clock}: {@code clock_nanosleep} when {@code clock}
+     * is {@link NodeClock#system()} and the call is usable, else {@link DeadlineSleeper#parking}.
+     */
+    public static DeadlineSleeper forCurrentThread(NodeClock clock) {
+        Objects.requireNonNull(clock, "clock");
+        return clock == NodeClock.system() && isAvailable() ? new AbsoluteSleeper() : DeadlineSleeper.parking(clock);
+    }
+
+    /** What {@code sleeper} does, for reports: the kernel call, or parking and why. */
+    public static String describe(DeadlineSleeper sleeper) {
+        if (sleeper instanceof AbsoluteSleeper) {
+            return "clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME)";
+        }
+        return "LockSupport.parkNanos" + unavailableReason().map(reason -> " (" + reason + ")").orElse("");
+    }
+
+    /** Sleeps until {@code System.nanoTime()} reaches {@code deadlineNs}; at once if it has. */
+    @Override
+    public void sleepUntil(long deadlineNs) {
+        LinuxClock.sleepUntil(deadlineNs, timespec);
+    }
+}
