@@ -21,7 +21,7 @@ import java.util.Optional;
  * stretch (the Notifier does). A thread inside the call is in native code, so a safepoint does not
  * wait for it.
  *
- * <p>{@link #forCurrentThread} falls back to {@link DeadlineSleeper#parking} where the call is not
+ * <p>{@link #forClock} falls back to {@link DeadlineSleeper#parking} where the call is not
  * usable (not Linux, native access denied, a clock that is not the system's); {@link #describe}
  * says which. An instance belongs to the thread that sleeps with it; it allocates nothing per sleep.
  */
@@ -43,10 +43,11 @@ public final class AbsoluteSleeper implements DeadlineSleeper {
     }
 
     /**
-     * An absolute sleeper for a thread on {@code clock}: {@code clock_nanosleep} when {@code clock}
-     * is {@link NodeClock#system()} and the call is usable, else {@link DeadlineSleeper#parking}.
+     * An absolute sleeper on {@code clock}, for one thread (it may be made on another): {@code
+     * clock_nanosleep} when {@code clock} is {@link NodeClock#system()} and the call is usable, else
+     * {@link DeadlineSleeper#parking}.
      */
-    public static DeadlineSleeper forCurrentThread(NodeClock clock) {
+    public static DeadlineSleeper forClock(NodeClock clock) {
         Objects.requireNonNull(clock, "clock");
         return clock == NodeClock.system() && isAvailable() ? new AbsoluteSleeper() : DeadlineSleeper.parking(clock);
     }
@@ -56,7 +57,8 @@ public final class AbsoluteSleeper implements DeadlineSleeper {
         if (sleeper instanceof AbsoluteSleeper) {
             return "clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME)";
         }
-        return "LockSupport.parkNanos" + unavailableReason().map(reason -> " (" + reason + ")").orElse("");
+        return "LockSupport.parkNanos (" + unavailableReason().orElse("not the system clock, or not this class's sleeper")
+                + ")";
     }
 
     /** Sleeps until {@code System.nanoTime()} reaches {@code deadlineNs}; at once if it has. */

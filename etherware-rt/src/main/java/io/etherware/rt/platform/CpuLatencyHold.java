@@ -2,11 +2,15 @@ package io.etherware.rt.platform;
 
 import io.etherware.rt.platform.internal.Errno;
 import io.etherware.rt.platform.internal.RefusalWarnings;
-import java.io.FileOutputStream;
 import java.io.IOException;
+import java.io.OutputStream;
 import java.nio.file.AccessDeniedException;
+import java.nio.file.Files;
 import java.nio.file.NoSuchFileException;
+import java.nio.file.Path;
+import java.nio.file.StandardOpenOption;
 import java.util.Optional;
+import org.slf4j.LoggerFactory;
 
 /**
  * Holds {@code /dev/cpu_dma_latency} at 0 µs while open, as {@code cyclictest} does for itself: the
@@ -17,8 +21,9 @@ import java.util.Optional;
  *
  * <p>The request lasts as long as the file stays open (the kernel's PM QoS interface) and ends with
  * {@link #close()} or the process; several holds, in one process or many, are combined by the kernel
- * (the lowest wins). A refusal (no such device, no permission) never throws: it is warned once, with
- * the fix, and the hold holds nothing.
+ * (the lowest wins). A refusal (no permission) never throws: it is warned once, with the fix, and
+ * the hold holds nothing. A kernel without the device (not Linux, some containers) is not a refusal:
+ * there is nothing to hold, which is logged once at INFO.
  *
  * <p>Thread-safety: thread-safe.
  */
@@ -27,18 +32,24 @@ public final class CpuLatencyHold implements AutoCloseable {
     /** The device file. */
     public static final String DEVICE = "/dev/cpu_dma_latency";
 
-    private final FileOutputStream device;
-    private final Optional<PlatformRefusal> refusal;
+    private static final java.util.concurrent.atomic.AtomicBoolean ABSENCE_LOGGED =
+            new java.util.concurrent.atomic.AtomicBoolean();
 
-    private CpuLatencyHold(FileOutputStream device, Optional<PlatformRefusal> refusal) {
+    private final OutputStream device;
+    private final Optional<PlatformRefusal> refusal;
+    private final boolean absent;
+
+    private CpuLatencyHold(OutputStream device, Optional<PlatformRefusal> refusal, boolean absent) {
         this.device = device;
         this.refusal = refusal;
+        this.absent = absent;
     }
 
     /** Requests 0 µs; where that is refused, holds nothing, warns once and says why in {@link #refusal}. */
     public static CpuLatencyHold request() {
         try {
-            var device = new FileOutputStream(DEVICE);
+            // WRITE without CREATE: where the device is missing, never make a file of that name.
+            OutputStream device = Files.newOutputStream(Path.of(DEVICE), StandardOpenOption.WRITE);
             try {
                 device.write(new byte[] {0, 0, 0, 0}); // a 32-bit 0, in either byte order
                 device.flush();
@@ -46,17 +57,23 @@ public final class CpuLatencyHold implements AutoCloseable {
                 device.close();
                 throw e;
             }
-            return new CpuLatencyHold(device, Optional.empty());
+            return new CpuLatencyHold(device, Optional.empty(), false);
+        } catch (NoSuchFileException | UnsupportedOperationException e) {
+            if (ABSENCE_LOGGED.compareAndSet(false, true)) {
+                LoggerFactory.getLogger(CpuLatencyHold.class).info("cpu latency: no {} on this system; nothing to hold",
+                        DEVICE);
+            }
+            return new CpuLatencyHold(null, Optional.empty(), true);
         } catch (IOException | SecurityException e) {
             PlatformRefusal refusal = refusal(e);
             RefusalWarnings.shared().warnOnce(refusal);
-            return new CpuLatencyHold(null, Optional.of(refusal));
+            return new CpuLatencyHold(null, Optional.of(refusal), false);
         }
     }
 
     /** Not requested: the CPUs idle as the OS likes. */
     public static CpuLatencyHold none() {
-        return new CpuLatencyHold(null, Optional.empty());
+        return new CpuLatencyHold(null, Optional.empty(), false);
     }
 
     /** Whether the request is in force. */
@@ -73,6 +90,9 @@ public final class CpuLatencyHold implements AutoCloseable {
     public String state() {
         if (device != null) {
             return "cpu latency: " + DEVICE + " held at 0 us (CPUs kept out of deep idle states, as cyclictest does)";
+        }
+        if (absent) {
+            return "cpu latency: no " + DEVICE + " on this system, nothing held";
         }
         return refusal.map(r -> "cpu latency: " + r + "; CPUs may sleep deeply")
                 .orElse("cpu latency: not requested; CPUs may sleep deeply");
@@ -92,12 +112,9 @@ public final class CpuLatencyHold implements AutoCloseable {
 
     private static PlatformRefusal refusal(Exception e) {
         String message = String.valueOf(e.getMessage());
-        int errno = e instanceof SecurityException || e instanceof AccessDeniedException
-                || message.contains("Permission denied") ? Errno.EACCES
-                : e instanceof NoSuchFileException || message.contains("No such file") ? Errno.ENOENT : Errno.EIO;
+        int errno = e instanceof SecurityException || e instanceof AccessDeniedException ? Errno.EACCES : Errno.EIO;
         String fix = errno == Errno.EACCES
                 ? "run as root, or let the node's user write " + DEVICE + " (e.g. a udev rule giving it group write)"
-                : errno == Errno.ENOENT ? "this kernel has no PM QoS device; nothing to do (the CPUs may wake slowly)"
                 : "check " + DEVICE + " (" + message + ")";
         return new PlatformRefusal("cpu latency", DEVICE + "=0us", errno, Errno.name(errno), fix);
     }

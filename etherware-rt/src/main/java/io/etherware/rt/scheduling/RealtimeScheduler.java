@@ -111,47 +111,51 @@ public final class RealtimeScheduler implements Scheduler {
             }
             Optional<PlatformRefusal> memoryRefusal = config.lockMemory() ? Platform.current().lockMemory()
                     : Optional.empty();
-            var processLines = new ArrayList<String>();
-            var processRefusals = new ArrayList<PlatformRefusal>();
-            ThreadSchedulingRule rule = config.threadSchedulingRule();
-            boolean anyRealtime = rule.dispatchers().stream().anyMatch(spec -> spec.policy().isRealtime());
-            if (config.holdCpuLatency() && anyRealtime) {
-                cpuLatency = CpuLatencyHold.request();
-                processLines.add(cpuLatency.state());
-                cpuLatency.refusal().ifPresent(processRefusals::add);
+            try {
+                var processLines = new ArrayList<String>();
+                var processRefusals = new ArrayList<PlatformRefusal>();
+                ThreadSchedulingRule tsr = config.threadSchedulingRule();
+                boolean anyRealtime = tsr.dispatchers().stream().anyMatch(spec -> spec.policy().isRealtime());
+                if (config.holdCpuLatency() && anyRealtime) {
+                    cpuLatency = CpuLatencyHold.request();
+                    processLines.add(cpuLatency.state());
+                    cpuLatency.refusal().ifPresent(processRefusals::add);
+                }
+                if (!config.realtimeCpus().isInherit()) {
+                    // Before the dispatchers start: they, and every thread asking for a real-time
+                    // policy on inherited CPUs from now on, take the real-time CPUs.
+                    partition = Platform.current().partitionCpus(config.realtimeCpus());
+                    processLines.add(partition.describe());
+                    processRefusals.addAll(partition.refusals());
+                }
+                var newContext = new DispatchContext(runner, clock, components, config.deadlineMissHandler(),
+                        config.priorityInheritance());
+                var all = new Dispatcher[tsr.size()];
+                for (int id = 0; id < all.length; id++) {
+                    all[id] = new Dispatcher(id, tsr.dispatcher(id), newContext, recorders.get(id),
+                            name() + "-dispatcher-" + id);
+                }
+                newContext.setDispatchers(all);
+                for (Dispatcher dispatcher : all) {
+                    dispatcher.start();
+                }
+                var grants = new ArrayList<ThreadGrant>();
+                long deadlineNs = System.nanoTime() + START_TIMEOUT_NS;
+                for (Dispatcher dispatcher : all) {
+                    grants.add(awaitGrant(dispatcher, deadlineNs));
+                }
+                warnMostDemandingFirst(grants);
+                platformReport = new PlatformReport(grants, config.lockMemory(), memoryRefusal, processLines,
+                        processRefusals);
+                dispatchers = all;
+                context = newContext;
+                LOG.info("scheduler {}: placement {}, {} dispatchers {}", name(), config.placementRule(), all.length,
+                        tsr);
+                platformReport.lines().forEach(line -> LOG.info("scheduler {}: {}", name(), line));
+            } catch (RuntimeException | Error e) {
+                releaseProcessRequests(); // a start that fails holds nothing
+                throw e;
             }
-            if (!config.realtimeCpus().isInherit()) {
-                // Before the dispatchers start: they, and every thread asking for a real-time
-                // policy on inherited CPUs from now on, take the real-time CPUs.
-                partition = Platform.current().partitionCpus(config.realtimeCpus());
-                processLines.add(partition.describe());
-                processRefusals.addAll(partition.refusals());
-            }
-            var newContext = new DispatchContext(runner, clock, components, config.deadlineMissHandler(),
-                    config.priorityInheritance());
-            ThreadSchedulingRule tsr = config.threadSchedulingRule();
-            var all = new Dispatcher[tsr.size()];
-            for (int id = 0; id < all.length; id++) {
-                all[id] = new Dispatcher(id, tsr.dispatcher(id), newContext, recorders.get(id),
-                        name() + "-dispatcher-" + id);
-            }
-            newContext.setDispatchers(all);
-            for (Dispatcher dispatcher : all) {
-                dispatcher.start();
-            }
-            var grants = new ArrayList<ThreadGrant>();
-            long deadlineNs = System.nanoTime() + START_TIMEOUT_NS;
-            for (Dispatcher dispatcher : all) {
-                grants.add(awaitGrant(dispatcher, deadlineNs));
-            }
-            warnMostDemandingFirst(grants);
-            platformReport = new PlatformReport(grants, config.lockMemory(), memoryRefusal, processLines,
-                    processRefusals);
-            dispatchers = all;
-            context = newContext;
-            LOG.info("scheduler {}: placement {}, {} dispatchers {}", name(), config.placementRule(), all.length,
-                    tsr);
-            platformReport.lines().forEach(line -> LOG.info("scheduler {}: {}", name(), line));
         }
     }
 
@@ -273,6 +277,7 @@ public final class RealtimeScheduler implements Scheduler {
             all = dispatchers;
         }
         if (started == null) {
+            releaseProcessRequests();
             return List.of();
         }
         long deadlineNs = System.nanoTime() + Math.max(0, timeoutNs);
@@ -301,14 +306,21 @@ public final class RealtimeScheduler implements Scheduler {
             LOG.warn("scheduler {}: {} queued jobs stay with dispatchers still inside a job after shutdown", name(),
                     stranded[0]);
         }
-        synchronized (lifecycle) {
-            cpuLatency.close();
-            if (partition != null) {
-                partition.close();
-            }
-        }
+        releaseProcessRequests();
         LOG.info("scheduler {} stopped; {} queued jobs not run", name(), leftovers.size());
         return leftovers;
+    }
+
+    /** Releases the CPU latency request and this scheduler's share of the CPU partition. Idempotent. */
+    private void releaseProcessRequests() {
+        synchronized (lifecycle) {
+            cpuLatency.close();
+            cpuLatency = CpuLatencyHold.none();
+            if (partition != null) {
+                partition.close();
+                partition = null;
+            }
+        }
     }
 
     private void join(Dispatcher dispatcher, long timeoutNs) {

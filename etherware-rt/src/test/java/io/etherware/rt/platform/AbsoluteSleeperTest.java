@@ -17,7 +17,7 @@ class AbsoluteSleeperTest {
     void shouldSleepInTheKernelUntilTheDeadlineAndNotBeforeWhenAvailable() {
         assumeTrue(Platform.current().isAvailable(), "Linux only");
         assertTrue(AbsoluteSleeper.isAvailable(), AbsoluteSleeper.unavailableReason().orElse(""));
-        DeadlineSleeper sleeper = AbsoluteSleeper.forCurrentThread(NodeClock.system());
+        DeadlineSleeper sleeper = AbsoluteSleeper.forClock(NodeClock.system());
         assertEquals("clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME)", AbsoluteSleeper.describe(sleeper));
         for (int i = 0; i < 20; i++) {
             long deadlineNs = System.nanoTime() + 2_000_000L;
@@ -44,7 +44,7 @@ class AbsoluteSleeperTest {
                 return 0;
             }
         };
-        DeadlineSleeper sleeper = AbsoluteSleeper.forCurrentThread(manual);
+        DeadlineSleeper sleeper = AbsoluteSleeper.forClock(manual);
         assertFalse(sleeper instanceof AbsoluteSleeper, "the kernel knows only the system clock");
         assertTrue(AbsoluteSleeper.describe(sleeper).startsWith("LockSupport.parkNanos"));
         sleeper.sleepUntil(-1); // past on that clock: returns at once

@@ -3,7 +3,6 @@ package io.etherware.rt.platform;
 import static org.junit.jupiter.api.Assertions.assertArrayEquals;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
-import static org.junit.jupiter.api.Assertions.assertSame;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
@@ -164,36 +163,76 @@ class PlatformTest {
         assertThrows(IllegalArgumentException.class, () -> platform.partitionCpus(CpuSet.of(allowed)),
                 "a partition must leave a CPU for the other threads");
         assertThrows(IllegalArgumentException.class, () -> platform.partitionCpus(CpuSet.of(CpuSet.MAX_CPUS - 1)),
-                "a CPU this process may not use");
+                "a CPU that is not online");
         try (CpuPartition partition = platform.partitionCpus(realtime)) {
             assertEquals(ordinary, partition.ordinaryCpus());
             assertArrayEquals(ordinary.cpus(), io.etherware.rt.platform.internal.LinuxNative.getAffinity(0),
                     "the caller, an ordinary thread, was moved off the real-time CPU");
-            assertEquals(realtime, partition.resolve(ThreadPolicy.fifo(10), CpuSet.inherit()));
-            assertEquals(ordinary, partition.resolve(ThreadPolicy.NON_REALTIME, CpuSet.inherit()));
             assertThrows(IllegalStateException.class, () -> platform.partitionCpus(ordinary),
                     "one partition per JVM");
-            try (CpuPartition shared = platform.partitionCpus(realtime)) {
-                assertSame(partition, shared);
-            }
-            assertSame(partition, platform.cpuPartition().orElseThrow(), "still held by the first holder");
-            // An ordinary thread that lands on the real-time CPU (as one started by a pinned
-            // real-time thread does) is moved back by the keeper.
-            int[] seen = onFreshThread(() -> {
-                io.etherware.rt.platform.internal.LinuxNative.setAffinity(0, realtime.cpus());
-                long untilNs = System.nanoTime() + 5 * CpuPartition.KEEPER_PERIOD_NS;
-                int[] affinity = io.etherware.rt.platform.internal.LinuxNative.getAffinity(0);
-                while (java.util.Arrays.equals(affinity, realtime.cpus()) && System.nanoTime() < untilNs) {
-                    java.util.concurrent.locks.LockSupport.parkNanos(10_000_000);
-                    affinity = io.etherware.rt.platform.internal.LinuxNative.getAffinity(0);
+            CpuPartition second = platform.partitionCpus(realtime);
+            second.close();
+            second.close(); // a holder's second close does nothing
+            assertEquals(realtime, platform.cpuPartition().orElseThrow().realtimeCpus(),
+                    "still held by the first holder");
+            // Placed by the platform: a real-time request on inherited CPUs, and an explicit one.
+            ThreadGrant realtimeGrant = onFreshThread(
+                    () -> platform.configureCurrentThreadWithoutWarning(ThreadPolicy.fifo(1), CpuSet.inherit()));
+            assertEquals(realtime, realtimeGrant.grantedCpus(), realtimeGrant.toLine());
+            // An ordinary thread that lands on the real-time CPU by inheritance (as one started by
+            // a pinned real-time thread does) is moved back by the keeper; one the platform placed
+            // there on request stays.
+            int[][] seen = onFreshThread(() -> {
+                ThreadGrant placed = platform.configureCurrentThreadWithoutWarning(ThreadPolicy.NON_REALTIME, realtime);
+                int[][] affinities = new int[2][];
+                Thread inheriting = Thread.ofPlatform().start(() -> affinities[1] = awaitAffinityChange(realtime));
+                try {
+                    inheriting.join();
+                } catch (InterruptedException e) {
+                    Thread.currentThread().interrupt();
                 }
-                return affinity;
+                // The sweep that moved the inheriting thread looked at this one too.
+                affinities[0] = io.etherware.rt.platform.internal.LinuxNative.getAffinity(0);
+                assertEquals(realtime, placed.grantedCpus());
+                return affinities;
             });
-            assertArrayEquals(ordinary.cpus(), seen, "moved back to the ordinary CPUs");
+            assertArrayEquals(realtime.cpus(), seen[0], "placed on request: left alone");
+            assertArrayEquals(ordinary.cpus(), seen[1], "inherited: moved back to the ordinary CPUs");
             assertTrue(partition.threadsMovedBack() >= 1, partition.describe());
         }
         assertTrue(platform.cpuPartition().isEmpty());
         assertArrayEquals(allowed, io.etherware.rt.platform.internal.LinuxNative.getAffinity(0),
-                "closed: ordinary threads may use every CPU again");
+                "closed: the moved threads may use their CPUs again");
+    }
+
+    @Test
+    void shouldPartitionFromAThreadThatMayNotRunOnTheRealtimeCpus() throws Exception {
+        org.junit.jupiter.api.Assumptions.assumeTrue(io.etherware.rt.platform.internal.LinuxNative.isAvailable(),
+                "Linux only");
+        int[] allowed = io.etherware.rt.platform.internal.LinuxNative.getAffinity(0);
+        org.junit.jupiter.api.Assumptions.assumeTrue(allowed.length >= 2, "needs two CPUs");
+        CpuSet realtime = CpuSet.of(allowed[allowed.length - 1]);
+        CpuSet ordinary = CpuSet.of(java.util.Arrays.copyOf(allowed, allowed.length - 1));
+        // A JVM started by a partitioned one inherits only the ordinary CPUs, and partitions too.
+        CpuSet granted = onFreshThread(() -> {
+            io.etherware.rt.platform.internal.LinuxNative.setAffinity(0, ordinary.cpus());
+            try (CpuPartition partition = Platform.current().partitionCpus(realtime)) {
+                assertEquals(ordinary, partition.ordinaryCpus());
+                return Platform.current().configureCurrentThreadWithoutWarning(ThreadPolicy.NON_REALTIME, realtime)
+                        .grantedCpus();
+            }
+        });
+        assertEquals(realtime, granted, "the real-time CPU is usable though the opener could not run there");
+    }
+
+    /** This thread's CPUs once they differ from {@code from}, or after five keeper periods. */
+    private static int[] awaitAffinityChange(CpuSet from) {
+        long untilNs = System.nanoTime() + 5 * CpuPartition.KEEPER_PERIOD_NS;
+        int[] affinity = io.etherware.rt.platform.internal.LinuxNative.getAffinity(0);
+        while (java.util.Arrays.equals(affinity, from.cpus()) && System.nanoTime() < untilNs) {
+            java.util.concurrent.locks.LockSupport.parkNanos(10_000_000);
+            affinity = io.etherware.rt.platform.internal.LinuxNative.getAffinity(0);
+        }
+        return affinity;
     }
 }

@@ -86,6 +86,30 @@ class RealtimeSchedulerTest {
     }
 
     @Test
+    void shouldPartitionTheCpusWhileRunningAndReleaseThePartitionAndTheCpuLatencyAtShutdown() {
+        int[] allowed = io.etherware.rt.platform.internal.LinuxNative.getAffinity(0);
+        org.junit.jupiter.api.Assumptions.assumeTrue(Platform.current().isAvailable() && allowed.length >= 2,
+                "needs Linux and two CPUs");
+        io.etherware.rt.platform.CpuSet realtime = io.etherware.rt.platform.CpuSet.of(allowed[allowed.length - 1]);
+        // One SCHED_OTHER dispatcher: holdCpuLatency applies only with a real-time one, so none here.
+        start(oneDispatcher(new FifoPlacement()).realtimeCpus(realtime).build(), (job, nowNs) -> true,
+                NodeClock.system());
+        assertEquals(realtime, Platform.current().cpuPartition().orElseThrow().realtimeCpus());
+        List<String> lines = scheduler.platformReport().lines();
+        assertTrue(lines.getLast().startsWith("cpu partition: real-time threads on " + realtime), lines.toString());
+        assertTrue(lines.stream().noneMatch(line -> line.startsWith("cpu latency")), "no real-time dispatcher: "
+                + lines);
+        ThreadGrant dispatcher = scheduler.platformReport().threads().getFirst();
+        assertEquals(io.etherware.rt.platform.CpuSet.of(java.util.Arrays.copyOf(allowed, allowed.length - 1)),
+                dispatcher.grantedCpus(), "an ordinary dispatcher on the ordinary CPUs");
+
+        scheduler.shutdown(TimeUnit.SECONDS.toNanos(1));
+        assertTrue(Platform.current().cpuPartition().isEmpty(), "the scheduler's share of the partition is released");
+        assertTrue(java.util.Arrays.equals(allowed, io.etherware.rt.platform.internal.LinuxNative.getAffinity(0)),
+                "and this thread may use every CPU it had");
+    }
+
+    @Test
     void shouldRunQueuedJobsByKeyThenArrivalWhenTheDispatcherWasBusy() throws Exception {
         var keys = new ConcurrentHashMap<Long, Long>();
         var blockerRunning = new CountDownLatch(1);

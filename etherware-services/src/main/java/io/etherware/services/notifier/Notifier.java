@@ -102,7 +102,7 @@ public final class Notifier implements AutoCloseable {
         this.config = Objects.requireNonNull(config, "config");
         this.clock = Objects.requireNonNull(clock, "clock");
         DeadlineSleeper kernelSleeper = config.kernelSleep() && clock == NodeClock.system()
-                && AbsoluteSleeper.isAvailable() ? AbsoluteSleeper.forCurrentThread(clock) : null;
+                && AbsoluteSleeper.isAvailable() ? AbsoluteSleeper.forClock(clock) : null;
         this.sleeper = sleeper != null ? sleeper : new ReleaseSleeper(clock, config.spinNs(), kernelSleeper);
         this.sleepMethod = sleeper != null ? "a test's sleeper" : kernelSleeper != null
                 ? "parks, then " + AbsoluteSleeper.describe(kernelSleeper) + " for the last "

@@ -1,6 +1,7 @@
 package io.etherware.services.notifier;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.etherware.services.notifier.internal.ReleaseSleeper;
 import java.util.ArrayList;
@@ -20,12 +21,14 @@ class ReleaseSleeperTest {
         assertEquals(List.of(releaseNs), kernelSleeps, "within the window: straight to the kernel");
 
         kernelSleeps.clear();
-        var spinning = new ReleaseSleeper(clock, 0, deadlineNs -> {
+        long spinNs = 20_000;
+        var spinning = new ReleaseSleeper(clock, spinNs, deadlineNs -> {
             kernelSleeps.add(deadlineNs);
-            clock.set(deadlineNs + 50_000); // woke past the release: no spin left
+            clock.set(deadlineNs + spinNs); // woke at the release: no spin left
         });
-        spinning.sleepUntil(clock.nanoTime() + 100_000);
-        assertEquals(1, kernelSleeps.size());
+        long nextReleaseNs = clock.nanoTime() + 100_000;
+        spinning.sleepUntil(nextReleaseNs);
+        assertEquals(List.of(nextReleaseNs - spinNs), kernelSleeps, "the kernel sleep ends where the spin begins");
     }
 
     @Test
@@ -40,8 +43,12 @@ class ReleaseSleeperTest {
     @Test
     void shouldOnlyParkWithoutAKernelSleeper() {
         var sleeper = new ReleaseSleeper(clock, 0, null);
+        java.util.concurrent.locks.LockSupport.parkNanos(1); // takes a stale permit, if any
+        long startNs = System.nanoTime();
         sleeper.sleepUntil(clock.nanoTime() - 1); // past: returns at once
-        sleeper.sleepUntil(clock.nanoTime() + 100_000); // parks 0.1 ms of real time, returns early
-        assertEquals(List.of(), kernelSleeps);
+        sleeper.sleepUntil(clock.nanoTime() + 2_000_000L); // parks 2 ms of real time, then returns early
+        long sleptNs = System.nanoTime() - startNs;
+        assertTrue(sleptNs >= 1_000_000L, "parked for the time left on its clock, not returned at once: " + sleptNs);
+        assertEquals(1_000_000_000L, clock.nanoTime(), "its clock did not move; the caller looks again");
     }
 }

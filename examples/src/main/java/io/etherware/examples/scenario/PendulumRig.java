@@ -102,7 +102,7 @@ public final class PendulumRig implements AutoCloseable {
     public long startBoard(SimThreads threads) {
         long originNs = clock.nanoTime();
         board.startRealTime(clock, threads.fifo("dsp-board", SimThreads.BOARD_PRIORITY),
-                AbsoluteSleeper.forCurrentThread(clock));
+                AbsoluteSleeper.forClock(clock));
         return originNs;
     }
 

@@ -11,8 +11,10 @@ import java.util.concurrent.locks.LockSupport;
  * {@code TIMER_ABSTIME}, as cyclictest does). Optionally it wakes {@code spinNs} early and spins on
  * the clock for the rest, which a timer wake-up cannot match for accuracy (a few µs instead of tens).
  *
- * <p>A kernel sleep cannot be ended by an unpark, so an unpark that comes within the window (a new
- * subscription, the Notifier closing) takes effect at most {@value #KERNEL_WINDOW_NS} ns late.
+ * <p>Neither a kernel sleep nor the spin after it is ended by an unpark, so an unpark that comes
+ * within the window (a new subscription, the Notifier closing) takes effect at most {@value
+ * #KERNEL_WINDOW_NS} ns plus {@code spinNs} late (its permit outlives the sleep: the next park
+ * returns at once).
  *
  * <p>The spin is bounded per release by {@code spinNs}: it starts no earlier than {@code spinNs}
  * before the deadline and never outlasts it, so at real-time priority it takes at most that much
