@@ -29,7 +29,7 @@ class BenchCommandIT {
             "periodic.notifier.loaded", "periodic.notifier-park.loaded", "periodic.executor.loaded", "periodic.cyclictest.loaded",
             "dispatch.fifo.idle", "dispatch.fifo.flood", "dispatch.rt.idle", "dispatch.rt.flood",
             "dispatch.rt-pinned.idle", "dispatch.rt-pinned.flood", "dispatch.queue.idle", "dispatch.queue.flood",
-            "throughput.fifo", "throughput.rt", "throughput.queue",
+            "throughput.fifo", "throughput.rt", "throughput.queue", "alloc.local-send", "alloc.tick",
             "codec.xml.encode.tick", "codec.json.encode.tick", "codec.xml.decode.tick", "codec.json.decode.tick",
             "codec.xml.encode.angles", "codec.json.encode.angles", "codec.xml.decode.angles",
             "codec.json.decode.angles",
