@@ -12,11 +12,13 @@ import java.util.Arrays;
 import java.util.List;
 import java.util.Map;
 import java.util.Objects;
+import java.util.HashMap;
+import java.util.HashSet;
 import java.util.Set;
-import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.atomic.AtomicBoolean;
 import java.util.concurrent.atomic.AtomicLong;
 import java.util.concurrent.locks.LockSupport;
+import java.util.stream.IntStream;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -48,8 +50,14 @@ import org.slf4j.LoggerFactory;
  * <p>One partition per JVM: {@link Platform#partitionCpus} with the same CPUs again gives another
  * holder of it, with other CPUs fails. Each holder closes once (a second close of the same holder
  * does nothing); when the last has closed, the keeper stops and the threads the partition moved go
- * back to the CPUs they had. Where the platform cannot set affinities (not Linux), the partition
- * holds nothing and says why in {@link #refusals()}. Thread-safe.
+ * back to the CPUs they had (a thread that came to the real-time CPUs by inheritance, or started
+ * during the partition, to the opener's CPUs and the real-time ones). Where the platform cannot
+ * set or read affinities, the partition holds nothing and says why in {@link #refusals()}.
+ *
+ * <p>Thread-safe: opening, closing, each sweep of the keeper and each thread's placement by the
+ * platform take one lock, so none of them sees another half done. A sweep makes a few system calls
+ * per thread of the JVM, once a second. Thread ids are the kernel's; one that ends and is reused by
+ * a new thread within a second of a sweep may be taken for the old one.
  */
 public final class CpuPartition implements AutoCloseable {
 
@@ -57,6 +65,7 @@ public final class CpuPartition implements AutoCloseable {
     /** How often the keeper looks for ordinary threads on the real-time CPUs. */
     static final long KEEPER_PERIOD_NS = 1_000_000_000L;
 
+    /** Guards {@link #current} and everything every {@link Shared} does to thread affinities. */
     private static final Object LOCK = new Object();
     private static Shared current;
 
@@ -84,16 +93,14 @@ public final class CpuPartition implements AutoCloseable {
                 current.holders++;
                 return new CpuPartition(current, true);
             }
-            if (!LinuxNative.isAvailable()) {
+            int[] allowed = LinuxNative.isAvailable() ? LinuxNative.getAffinity(0) : null;
+            if (allowed == null || allowed.length == 0) {
                 PlatformRefusal refusal = new PlatformRefusal("cpu partition", realtimeCpus.toString(), Errno.ENOSYS,
                         Errno.name(Errno.ENOSYS), "CPU affinity needs Linux with native access ("
-                        + LinuxNative.unavailableReason().orElse("") + "); the threads run on every CPU");
+                        + LinuxNative.unavailableReason().orElse("sched_getaffinity failed")
+                        + "); the threads run on every CPU");
                 Platform.current().warnOnce(List.of(refusal));
                 return new CpuPartition(Shared.inert(realtimeCpus, refusal), true);
-            }
-            int[] allowed = LinuxNative.getAffinity(0);
-            if (allowed == null || allowed.length == 0) {
-                throw new IllegalStateException("realtimeCpus=" + realtimeCpus + ": cannot read this thread's CPUs");
             }
             int[] online = onlineCpus();
             for (int cpu : realtimeCpus.cpus()) {
@@ -107,7 +114,9 @@ public final class CpuPartition implements AutoCloseable {
                 throw new IllegalArgumentException("realtimeCpus=" + realtimeCpus + " leaves no CPU of "
                         + CpuSet.of(allowed) + " for the JVM's other threads; keep at least one out of it");
             }
-            current = new Shared(realtimeCpus, CpuSet.of(ordinary));
+            int[] all = IntStream.concat(Arrays.stream(allowed), Arrays.stream(realtimeCpus.cpus())).distinct()
+                    .sorted().toArray();
+            current = new Shared(realtimeCpus, CpuSet.of(ordinary), CpuSet.of(all));
             LOG.info("{}", current.describe());
             if (!current.refusals.isEmpty()) {
                 Platform.current().warnOnce(List.of(current.refusals.get(0)));
@@ -123,12 +132,42 @@ public final class CpuPartition implements AutoCloseable {
         }
     }
 
+    /**
+     * Sets the calling thread's CPUs for a request of {@code requested} on {@code cpus}, under the
+     * JVM's partition if one is open: {@link CpuSet#inherit()} becomes its real-time CPUs for a
+     * real-time request and its ordinary CPUs otherwise, and a thread put on a real-time CPU is
+     * one the keeper leaves alone. Done under the partition's lock, so no sweep sees it half placed.
+     *
+     * @return the CPUs asked of the OS (inherit: none asked) and the OS's answer (null: none asked)
+     */
+    static Placed place(ThreadPolicy requested, CpuSet cpus) {
+        synchronized (LOCK) {
+            CpuSet resolved = cpus;
+            if (current != null && current.keeper != null) {
+                if (cpus.isInherit()) {
+                    resolved = requested.isRealtime() ? current.realtimeCpus : current.ordinaryCpus;
+                }
+                int tid = LinuxNative.currentThreadId();
+                if (Arrays.stream(resolved.cpus()).anyMatch(current.realtimeCpus::contains)) {
+                    current.placed.add(tid);
+                } else {
+                    current.placed.remove(tid);
+                }
+            }
+            return new Placed(resolved, resolved.isInherit() ? null : LinuxNative.setAffinity(0, resolved.cpus()));
+        }
+    }
+
+    /** What {@link #place} asked of the OS and got. */
+    record Placed(CpuSet cpus, NativeResult result) {
+    }
+
     /** The CPUs of the real-time threads. */
     public CpuSet realtimeCpus() {
         return shared.realtimeCpus;
     }
 
-    /** The CPUs of every other thread. */
+    /** The CPUs of every other thread (inherit when the partition holds nothing). */
     public CpuSet ordinaryCpus() {
         return shared.ordinaryCpus;
     }
@@ -149,22 +188,8 @@ public final class CpuPartition implements AutoCloseable {
     }
 
     /**
-     * The CPUs a thread asking for {@code requested} on {@code cpus} gets under this partition.
-     * Called on that thread, before it sets its affinity: a thread placed on a real-time CPU here is
-     * one the keeper leaves alone.
-     */
-    CpuSet resolve(ThreadPolicy requested, CpuSet cpus) {
-        CpuSet resolved = cpus.isInherit() ? (requested.isRealtime() ? shared.realtimeCpus : shared.ordinaryCpus)
-                : cpus;
-        if (Arrays.stream(resolved.cpus()).anyMatch(shared.realtimeCpus::contains)) {
-            shared.placed.add(LinuxNative.currentThreadId());
-        }
-        return resolved;
-    }
-
-    /**
      * Ends this holder's share (once; again does nothing). The last holder stops the keeper and
-     * puts the threads the partition moved back on the CPUs they had.
+     * puts the threads the partition moved back, before another partition can open.
      */
     @Override
     public void close() {
@@ -175,33 +200,39 @@ public final class CpuPartition implements AutoCloseable {
             if (--shared.holders > 0 || current != shared) {
                 return;
             }
+            shared.stopAndRestore();
             current = null;
         }
-        shared.stop();
+        if (shared.keeper != null) {
+            LockSupport.unpark(shared.keeper); // it sees 'stopped' at its next look and ends
+        }
     }
 
-    /** The state every holder of one partition shares. */
+    /** The state every holder of one partition shares; every method is called with {@link #LOCK} held. */
     private static final class Shared {
         final CpuSet realtimeCpus;
         final CpuSet ordinaryCpus;
+        /** The opener's CPUs and the real-time ones: where a thread without a recorded past goes back. */
+        final CpuSet allCpus;
         final List<PlatformRefusal> refusals;
         final int threadsMovedAtStart;
         final AtomicLong movedBack = new AtomicLong();
-        /** Kernel thread ids the platform put on a real-time CPU itself. */
-        final Set<Integer> placed = ConcurrentHashMap.newKeySet();
-        /** Where each thread the partition moved was before, by kernel thread id. */
-        final Map<Integer, int[]> previous = new ConcurrentHashMap<>();
+        /** Kernel thread ids the platform put on a real-time CPU on request. */
+        final Set<Integer> placed = new HashSet<>();
+        /** Where each thread the first sweep moved was before, by kernel thread id. */
+        final Map<Integer, int[]> previous = new HashMap<>();
         final Thread keeper;
-        int holders = 1; // guarded by LOCK
+        int holders = 1;
         volatile boolean stopped;
 
-        Shared(CpuSet realtimeCpus, CpuSet ordinaryCpus) {
+        Shared(CpuSet realtimeCpus, CpuSet ordinaryCpus, CpuSet allCpus) {
             this.realtimeCpus = realtimeCpus;
             this.ordinaryCpus = ordinaryCpus;
+            this.allCpus = allCpus;
             var found = new ArrayList<PlatformRefusal>();
-            this.threadsMovedAtStart = moveOrdinary(false, found);
+            this.threadsMovedAtStart = sweep(true, found);
             this.refusals = List.copyOf(found);
-            // Started after the move: it inherits the ordinary CPUs from this thread.
+            // Started after the sweep: it inherits the ordinary CPUs from this thread.
             this.keeper = Thread.ofPlatform().daemon().name("etherware-cpu-partition").unstarted(this::keep);
             this.keeper.start();
         }
@@ -209,6 +240,7 @@ public final class CpuPartition implements AutoCloseable {
         private Shared(CpuSet realtimeCpus, PlatformRefusal refusal) {
             this.realtimeCpus = realtimeCpus;
             this.ordinaryCpus = CpuSet.inherit();
+            this.allCpus = CpuSet.inherit();
             this.refusals = List.of(refusal);
             this.threadsMovedAtStart = 0;
             this.keeper = null;
@@ -227,89 +259,100 @@ public final class CpuPartition implements AutoCloseable {
                     + movedBack.get() + " moved back since)";
         }
 
-        void stop() {
+        private void keep() {
+            boolean warned = false;
+            while (true) {
+                LockSupport.parkNanos(this, KEEPER_PERIOD_NS);
+                var found = new ArrayList<PlatformRefusal>();
+                synchronized (LOCK) {
+                    if (stopped) {
+                        return;
+                    }
+                    movedBack.addAndGet(sweep(false, found));
+                }
+                if (!found.isEmpty() && !warned) {
+                    warned = true;
+                    Platform.current().warnOnce(List.of(found.get(0)));
+                }
+            }
+        }
+
+        /** With the lock held: no sweep runs after this; the moved threads go back. */
+        void stopAndRestore() {
             if (keeper == null) {
                 return;
             }
             stopped = true;
-            LockSupport.unpark(keeper);
-            try {
-                keeper.join(java.time.Duration.ofSeconds(2));
-            } catch (InterruptedException e) {
-                Thread.currentThread().interrupt();
-            }
-            synchronized (LOCK) {
-                // A partition opened meanwhile (same CPUs) has placed the threads itself: leave them.
-                if (current == null) {
-                    moveOrdinary(true, new ArrayList<>());
+            int restored = 0;
+            for (int tid : tasks()) {
+                NativeResult policy = LinuxNative.getScheduler(tid);
+                int[] affinity = LinuxNative.getAffinity(tid);
+                if (!policy.ok() || isRealtime(policy) || affinity == null
+                        || !Arrays.equals(affinity, ordinaryCpus.cpus())) {
+                    continue; // real-time, or moved by someone else since: not ours to undo
+                }
+                int[] target = previous.getOrDefault(tid, allCpus.cpus());
+                if (LinuxNative.setAffinity(tid, target).ok()) {
+                    restored++;
                 }
             }
-            LOG.info("cpu partition {} ended; the threads it moved are back on the CPUs they had", realtimeCpus);
-        }
-
-        private void keep() {
-            boolean warned = false;
-            while (!stopped) {
-                LockSupport.parkNanos(this, KEEPER_PERIOD_NS);
-                if (!stopped) {
-                    var found = new ArrayList<PlatformRefusal>();
-                    movedBack.addAndGet(moveOrdinary(false, found));
-                    if (!found.isEmpty() && !warned) {
-                        warned = true;
-                        Platform.current().warnOnce(List.of(found.get(0)));
-                    }
-                }
-            }
+            previous.clear();
+            placed.clear();
+            LOG.info("cpu partition {} ended; {} threads back on the CPUs they had", realtimeCpus, restored);
         }
 
         /**
-         * Moves the process's ordinary threads that may run on a real-time CPU to the ordinary
-         * CPUs, remembering where each was, or ({@code release}) puts each thread it moved back
-         * where it was, unless something else has moved it since. Skips real-time threads and
-         * those the platform placed on purpose. Returns how many moved.
+         * With the lock held: moves the ordinary threads that may run on a real-time CPU to the
+         * ordinary CPUs (remembering, in the first sweep, where each was), skipping real-time
+         * threads and those placed on request, and forgets threads that have ended. Returns how
+         * many moved.
          */
-        private int moveOrdinary(boolean release, List<PlatformRefusal> refusalsOut) {
-            if (release) {
-                int moved = 0;
-                for (var entry : previous.entrySet()) {
-                    int[] affinity = LinuxNative.getAffinity(entry.getKey());
-                    if (affinity != null && Arrays.equals(affinity, ordinaryCpus.cpus())
-                            && LinuxNative.setAffinity(entry.getKey(), entry.getValue()).ok()) {
-                        moved++;
-                    }
-                }
-                previous.clear();
-                return moved;
-            }
-            Path tasks = Path.of("/proc/self/task");
-            int moved = 0;
-            try (var entries = Files.list(tasks)) {
-                for (Path task : entries.toList()) {
-                    int tid = Integer.parseInt(task.getFileName().toString());
-                    NativeResult policy = LinuxNative.getScheduler(tid);
-                    if (!policy.ok() || policy.value() == LinuxNative.SCHED_FIFO
-                            || policy.value() == LinuxNative.SCHED_RR || placed.contains(tid)) {
-                        continue; // ended meanwhile, real-time, or placed on purpose: its CPUs are its own
-                    }
-                    int[] affinity = LinuxNative.getAffinity(tid);
-                    if (affinity == null || Arrays.stream(affinity).noneMatch(realtimeCpus::contains)) {
-                        continue;
-                    }
-                    NativeResult result = LinuxNative.setAffinity(tid, ordinaryCpus.cpus());
-                    if (result.ok()) {
-                        previous.putIfAbsent(tid, affinity);
-                        moved++;
-                    } else if (Files.exists(task)) {
-                        refusalsOut.add(new PlatformRefusal("cpu affinity", "thread " + tid + " to " + ordinaryCpus,
-                                result.errno(), Errno.name(result.errno()),
-                                RefusalAdvice.forAffinity(ordinaryCpus, result.errno(), LinuxNative.getAffinity(tid))));
-                    }
-                }
-            } catch (IOException | RuntimeException e) {
+        private int sweep(boolean first, List<PlatformRefusal> refusalsOut) {
+            List<Integer> tids = tasks();
+            if (tids.isEmpty()) {
                 refusalsOut.add(new PlatformRefusal("cpu affinity", "every ordinary thread to " + ordinaryCpus, 0, "",
-                        "cannot list this process's threads in " + tasks + ": " + e));
+                        "cannot list this process's threads in /proc/self/task"));
+                return 0;
+            }
+            var alive = new HashSet<>(tids);
+            placed.retainAll(alive);
+            previous.keySet().retainAll(alive);
+            int moved = 0;
+            for (int tid : tids) {
+                NativeResult policy = LinuxNative.getScheduler(tid);
+                if (!policy.ok() || isRealtime(policy) || placed.contains(tid)) {
+                    continue; // ended meanwhile, real-time, or placed on request: its CPUs are its own
+                }
+                int[] affinity = LinuxNative.getAffinity(tid);
+                if (affinity == null || Arrays.stream(affinity).noneMatch(realtimeCpus::contains)) {
+                    continue;
+                }
+                NativeResult result = LinuxNative.setAffinity(tid, ordinaryCpus.cpus());
+                if (result.ok()) {
+                    if (first) {
+                        previous.put(tid, affinity);
+                    }
+                    moved++;
+                } else if (Files.exists(Path.of("/proc/self/task", Integer.toString(tid)))) {
+                    refusalsOut.add(new PlatformRefusal("cpu affinity", "thread " + tid + " to " + ordinaryCpus,
+                            result.errno(), Errno.name(result.errno()),
+                            RefusalAdvice.forAffinity(ordinaryCpus, result.errno(), LinuxNative.getAffinity(tid))));
+                }
             }
             return moved;
+        }
+
+        private static boolean isRealtime(NativeResult policy) {
+            return policy.value() == LinuxNative.SCHED_FIFO || policy.value() == LinuxNative.SCHED_RR;
+        }
+
+        /** This process's kernel thread ids now; empty when they cannot be listed. */
+        private static List<Integer> tasks() {
+            try (var entries = Files.list(Path.of("/proc/self/task"))) {
+                return entries.map(task -> Integer.parseInt(task.getFileName().toString())).toList();
+            } catch (IOException | RuntimeException e) {
+                return List.of();
+            }
         }
     }
 

@@ -80,16 +80,11 @@ public final class Platform {
         Objects.requireNonNull(requested, "requested");
         Objects.requireNonNull(cpus, "cpus");
         var refusals = new ArrayList<PlatformRefusal>();
-        CpuPartition partition = CpuPartition.current();
-        if (partition != null) {
-            cpus = partition.resolve(requested, cpus);
-        }
-        if (!cpus.isInherit()) {
-            NativeResult result = LinuxNative.setAffinity(0, cpus.cpus());
-            if (!result.ok()) {
-                refusals.add(refusal("cpu affinity", cpus.toString(), result.errno(),
-                        RefusalAdvice.forAffinity(cpus, result.errno(), LinuxNative.getAffinity(0))));
-            }
+        CpuPartition.Placed placed = CpuPartition.place(requested, cpus);
+        cpus = placed.cpus();
+        if (placed.result() != null && !placed.result().ok()) {
+            refusals.add(refusal("cpu affinity", cpus.toString(), placed.result().errno(),
+                    RefusalAdvice.forAffinity(cpus, placed.result().errno(), LinuxNative.getAffinity(0))));
         }
         if (requested.isRealtime() || LinuxNative.isAvailable()) {
             int flags = requested.isRealtime() ? LinuxNative.SCHED_RESET_ON_FORK : 0;
@@ -112,9 +107,9 @@ public final class Platform {
      * CpuPartition}. Call it before the real-time threads start. A JVM has one partition: opening
      * it again with the same CPUs shares it (each holder closes its share), with other CPUs fails.
      *
-     * @throws IllegalArgumentException when {@code realtimeCpus} is inherit, names a CPU this
-     *                                  process may not use, or leaves none for the other threads
-     * @throws IllegalStateException    when the CPUs cannot be read, or another partition is open
+     * @throws IllegalArgumentException when {@code realtimeCpus} is inherit, names a CPU that is not
+     *                                  online, or leaves none of the caller's CPUs for the other threads
+     * @throws IllegalStateException    when another partition, with other CPUs, is open
      */
     public CpuPartition partitionCpus(CpuSet realtimeCpus) {
         return CpuPartition.open(realtimeCpus);

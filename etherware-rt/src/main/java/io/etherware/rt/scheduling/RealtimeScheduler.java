@@ -111,6 +111,8 @@ public final class RealtimeScheduler implements Scheduler {
             }
             Optional<PlatformRefusal> memoryRefusal = config.lockMemory() ? Platform.current().lockMemory()
                     : Optional.empty();
+            DispatchContext newContext = null;
+            Dispatcher[] all = null;
             try {
                 var processLines = new ArrayList<String>();
                 var processRefusals = new ArrayList<PlatformRefusal>();
@@ -128,9 +130,9 @@ public final class RealtimeScheduler implements Scheduler {
                     processLines.add(partition.describe());
                     processRefusals.addAll(partition.refusals());
                 }
-                var newContext = new DispatchContext(runner, clock, components, config.deadlineMissHandler(),
+                newContext = new DispatchContext(runner, clock, components, config.deadlineMissHandler(),
                         config.priorityInheritance());
-                var all = new Dispatcher[tsr.size()];
+                all = new Dispatcher[tsr.size()];
                 for (int id = 0; id < all.length; id++) {
                     all[id] = new Dispatcher(id, tsr.dispatcher(id), newContext, recorders.get(id),
                             name() + "-dispatcher-" + id);
@@ -153,7 +155,8 @@ public final class RealtimeScheduler implements Scheduler {
                         tsr);
                 platformReport.lines().forEach(line -> LOG.info("scheduler {}: {}", name(), line));
             } catch (RuntimeException | Error e) {
-                releaseProcessRequests(); // a start that fails holds nothing
+                abortStarted(newContext, all); // a start that fails leaves no dispatcher running
+                releaseProcessRequests(); // and holds nothing
                 throw e;
             }
         }
@@ -309,6 +312,20 @@ public final class RealtimeScheduler implements Scheduler {
         releaseProcessRequests();
         LOG.info("scheduler {} stopped; {} queued jobs not run", name(), leftovers.size());
         return leftovers;
+    }
+
+    /** After a failed start: stops the dispatchers that did start. */
+    private void abortStarted(DispatchContext newContext, Dispatcher[] all) {
+        if (newContext == null || all == null) {
+            return;
+        }
+        newContext.setState(DispatchContext.ABORTED);
+        for (Dispatcher dispatcher : all) {
+            if (dispatcher != null && dispatcher.thread() != null) {
+                dispatcher.wake();
+                join(dispatcher, MIN_JOIN_NS);
+            }
+        }
     }
 
     /** Releases the CPU latency request and this scheduler's share of the CPU partition. Idempotent. */

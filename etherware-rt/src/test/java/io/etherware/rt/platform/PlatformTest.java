@@ -223,6 +223,8 @@ class PlatformTest {
             }
         });
         assertEquals(realtime, granted, "the real-time CPU is usable though the opener could not run there");
+        assertArrayEquals(allowed, io.etherware.rt.platform.internal.LinuxNative.getAffinity(0),
+                "closed: this thread, moved by the partition, is back on its CPUs");
     }
 
     /** This thread's CPUs once they differ from {@code from}, or after five keeper periods. */
