@@ -206,6 +206,15 @@ class PlatformTest {
     }
 
     @Test
+    void shouldReadTheSameThreadIdFromProcAsFromGettid() throws Exception {
+        org.junit.jupiter.api.Assumptions.assumeTrue(io.etherware.rt.platform.internal.LinuxNative.isAvailable(),
+                "Linux only");
+        // The fallback where libc has no gettid (glibc before 2.30) reads this link.
+        var link = java.nio.file.Files.readSymbolicLink(java.nio.file.Path.of("/proc/thread-self"));
+        assertEquals(Platform.current().currentThreadId(), Integer.parseInt(link.getFileName().toString()));
+    }
+
+    @Test
     void shouldPartitionFromAThreadThatMayNotRunOnTheRealtimeCpus() throws Exception {
         org.junit.jupiter.api.Assumptions.assumeTrue(io.etherware.rt.platform.internal.LinuxNative.isAvailable(),
                 "Linux only");

@@ -147,10 +147,22 @@ public final class LinuxNative {
         return Optional.ofNullable(UNAVAILABLE_REASON);
     }
 
-    /** The calling thread's kernel thread id, or -1 when unknown. */
+    /**
+     * The calling thread's kernel thread id, or -1 when unknown. Without libc's {@code gettid}
+     * (glibc before 2.30) it is read from the {@code /proc/thread-self} link instead.
+     */
     public static int currentThreadId() {
         if (GETTID == null) {
-            return -1;
+            if (UNAVAILABLE_REASON != null) {
+                return -1;
+            }
+            try {
+                // /proc/thread-self -> <pid>/task/<tid>
+                java.nio.file.Path link = java.nio.file.Files.readSymbolicLink(java.nio.file.Path.of("/proc/thread-self"));
+                return Integer.parseInt(link.getFileName().toString());
+            } catch (java.io.IOException | RuntimeException e) {
+                return -1;
+            }
         }
         try {
             return (int) GETTID.invokeExact();
