@@ -10,6 +10,7 @@ import java.nio.file.NoSuchFileException;
 import java.nio.file.Path;
 import java.nio.file.StandardOpenOption;
 import java.util.Optional;
+import java.util.concurrent.atomic.AtomicBoolean;
 import org.slf4j.LoggerFactory;
 
 /**
@@ -32,8 +33,7 @@ public final class CpuLatencyHold implements AutoCloseable {
     /** The device file. */
     public static final String DEVICE = "/dev/cpu_dma_latency";
 
-    private static final java.util.concurrent.atomic.AtomicBoolean ABSENCE_LOGGED =
-            new java.util.concurrent.atomic.AtomicBoolean();
+    private static final AtomicBoolean ABSENCE_LOGGED = new AtomicBoolean();
 
     private final OutputStream device;
     private final Optional<PlatformRefusal> refusal;

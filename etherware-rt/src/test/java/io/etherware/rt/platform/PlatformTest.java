@@ -153,13 +153,11 @@ class PlatformTest {
 
     @Test
     void shouldKeepOrdinaryThreadsOffTheRealtimeCpusOfAPartitionUntilItCloses() throws Exception {
-        org.junit.jupiter.api.Assumptions.assumeTrue(io.etherware.rt.platform.internal.LinuxNative.isAvailable(),
-                "Linux only");
-        int[] allowed = io.etherware.rt.platform.internal.LinuxNative.getAffinity(0);
-        org.junit.jupiter.api.Assumptions.assumeTrue(allowed.length >= 2, "needs two CPUs");
+        Split split = lastCpuRealtimeOrSkip();
+        int[] allowed = split.allowed();
+        CpuSet realtime = split.realtime();
+        CpuSet ordinary = split.ordinary();
         var platform = Platform.current();
-        CpuSet realtime = CpuSet.of(allowed[allowed.length - 1]);
-        CpuSet ordinary = CpuSet.of(java.util.Arrays.copyOf(allowed, allowed.length - 1));
         assertThrows(IllegalArgumentException.class, () -> platform.partitionCpus(CpuSet.of(allowed)),
                 "a partition must leave a CPU for the other threads");
         assertThrows(IllegalArgumentException.class, () -> platform.partitionCpus(CpuSet.of(CpuSet.MAX_CPUS - 1)),
@@ -216,12 +214,10 @@ class PlatformTest {
 
     @Test
     void shouldPartitionFromAThreadThatMayNotRunOnTheRealtimeCpus() throws Exception {
-        org.junit.jupiter.api.Assumptions.assumeTrue(io.etherware.rt.platform.internal.LinuxNative.isAvailable(),
-                "Linux only");
-        int[] allowed = io.etherware.rt.platform.internal.LinuxNative.getAffinity(0);
-        org.junit.jupiter.api.Assumptions.assumeTrue(allowed.length >= 2, "needs two CPUs");
-        CpuSet realtime = CpuSet.of(allowed[allowed.length - 1]);
-        CpuSet ordinary = CpuSet.of(java.util.Arrays.copyOf(allowed, allowed.length - 1));
+        Split split = lastCpuRealtimeOrSkip();
+        int[] allowed = split.allowed();
+        CpuSet realtime = split.realtime();
+        CpuSet ordinary = split.ordinary();
         // A JVM started by a partitioned one inherits only the ordinary CPUs, and partitions too.
         CpuSet granted = onFreshThread(() -> {
             io.etherware.rt.platform.internal.LinuxNative.setAffinity(0, ordinary.cpus());
@@ -234,6 +230,20 @@ class PlatformTest {
         assertEquals(realtime, granted, "the real-time CPU is usable though the opener could not run there");
         assertArrayEquals(allowed, io.etherware.rt.platform.internal.LinuxNative.getAffinity(0),
                 "closed: this thread, moved by the partition, is back on its CPUs");
+    }
+
+    /** This thread's CPUs, split into the last one (real-time) and the rest (ordinary). */
+    private record Split(int[] allowed, CpuSet realtime, CpuSet ordinary) {
+    }
+
+    /** The split of this thread's CPUs; skips the test off Linux or with fewer than two CPUs. */
+    private static Split lastCpuRealtimeOrSkip() {
+        org.junit.jupiter.api.Assumptions.assumeTrue(io.etherware.rt.platform.internal.LinuxNative.isAvailable(),
+                "Linux only");
+        int[] allowed = io.etherware.rt.platform.internal.LinuxNative.getAffinity(0);
+        org.junit.jupiter.api.Assumptions.assumeTrue(allowed.length >= 2, "needs two CPUs");
+        return new Split(allowed, CpuSet.of(allowed[allowed.length - 1]),
+                CpuSet.of(java.util.Arrays.copyOf(allowed, allowed.length - 1)));
     }
 
     /** This thread's CPUs once they differ from {@code from}, or after five keeper periods. */

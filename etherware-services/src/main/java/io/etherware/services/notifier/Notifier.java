@@ -101,14 +101,15 @@ public final class Notifier implements AutoCloseable {
         this.kernel = Objects.requireNonNull(kernel, "kernel");
         this.config = Objects.requireNonNull(config, "config");
         this.clock = Objects.requireNonNull(clock, "clock");
-        DeadlineSleeper kernelSleeper = config.kernelSleep() && clock == NodeClock.system()
-                && AbsoluteSleeper.isAvailable() ? AbsoluteSleeper.forClock(clock) : null;
+        // AbsoluteSleeper falls back to parking (and says why) where the kernel sleep is not usable;
+        // ReleaseSleeper parks anyway, so it gets a kernel sleeper only when it is one.
+        DeadlineSleeper candidate = config.kernelSleep() ? AbsoluteSleeper.forClock(clock) : null;
+        DeadlineSleeper kernelSleeper = candidate instanceof AbsoluteSleeper ? candidate : null;
         this.sleeper = sleeper != null ? sleeper : new ReleaseSleeper(clock, config.spinNs(), kernelSleeper);
         this.sleepMethod = sleeper != null ? "a test's sleeper" : kernelSleeper != null
                 ? "parks, then " + AbsoluteSleeper.describe(kernelSleeper) + " for the last "
                         + ReleaseSleeper.KERNEL_WINDOW_NS / 1_000 + " us"
-                : "LockSupport.parkNanos" + (config.kernelSleep() ? AbsoluteSleeper.unavailableReason()
-                        .map(reason -> " (" + reason + ")").orElse(" (not the system clock)") : "");
+                : candidate != null ? AbsoluteSleeper.describe(candidate) : "LockSupport.parkNanos";
         this.profile = config.profile() != null ? config.profile() : profileFor(kernel.nodeId());
         this.schedule = new ReleaseSchedule(kernel, clock, profile);
         this.component = new NotifierComponent(this);

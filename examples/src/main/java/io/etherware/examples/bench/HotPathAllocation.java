@@ -15,7 +15,6 @@ import io.etherware.rt.scheduling.ThreadSchedulingRule;
 import io.etherware.services.notifier.Notifier;
 import io.etherware.services.notifier.NotifierConfig;
 import io.etherware.services.notifier.Subscription;
-import java.lang.management.ManagementFactory;
 import java.util.List;
 import java.util.Locale;
 import java.util.concurrent.TimeUnit;
@@ -39,8 +38,6 @@ final class HotPathAllocation {
     private static final Profile SINK = Profile.of("bench-alloc-sink");
     private static final QoS HIGH = QoS.of(Criticality.HIGH);
     private static final int BATCH = 1_000;
-    private static final com.sun.management.ThreadMXBean THREADS =
-            (com.sun.management.ThreadMXBean) ManagementFactory.getThreadMXBean();
 
     record Sample(long value) implements Contents {
     }
@@ -68,12 +65,12 @@ final class HotPathAllocation {
                     new Sample(42), new MessageId(node.nodeId(), 1), null);
             long warmupNs = Math.max(config.warmupNs(), TimeUnit.MILLISECONDS.toNanos(500));
             long sent = sendFor(node, message, warmupNs, 0, received);
-            long senderBefore = THREADS.getCurrentThreadAllocatedBytes();
-            long receiverBefore = THREADS.getThreadAllocatedBytes(receiver.get().threadId());
+            long senderBefore = Throughput.Allocation.currentThreadBytes();
+            long receiverBefore = Throughput.Allocation.threadBytes(receiver.get());
             long measuredFrom = sent;
             sent = sendFor(node, message, config.throughputNs(), sent, received);
-            long senderBytes = THREADS.getCurrentThreadAllocatedBytes() - senderBefore;
-            long receiverBytes = THREADS.getThreadAllocatedBytes(receiver.get().threadId()) - receiverBefore;
+            long senderBytes = Throughput.Allocation.currentThreadBytes() - senderBefore;
+            long receiverBytes = Throughput.Allocation.threadBytes(receiver.get()) - receiverBefore;
             long messages = sent - measuredFrom;
             double perMessage = (double) (senderBytes + receiverBytes) / messages;
             return BenchRow.value("alloc.local-send", Throughput.SECTION, "local send of a reused message to onMessage",
@@ -115,11 +112,11 @@ final class HotPathAllocation {
             Thread notifierThread = Thread.getAllStackTraces().keySet().stream()
                     .filter(t -> t.getName().equals("bench-alloc-notifier")).findFirst().orElseThrow();
             long receivedBefore = received.get();
-            long notifierBefore = THREADS.getThreadAllocatedBytes(notifierThread.threadId());
-            long receiverBefore = THREADS.getThreadAllocatedBytes(receiver.get().threadId());
+            long notifierBefore = Throughput.Allocation.threadBytes(notifierThread);
+            long receiverBefore = Throughput.Allocation.threadBytes(receiver.get());
             TimeUnit.NANOSECONDS.sleep(config.throughputNs());
-            long notifierBytes = THREADS.getThreadAllocatedBytes(notifierThread.threadId()) - notifierBefore;
-            long receiverBytes = THREADS.getThreadAllocatedBytes(receiver.get().threadId()) - receiverBefore;
+            long notifierBytes = Throughput.Allocation.threadBytes(notifierThread) - notifierBefore;
+            long receiverBytes = Throughput.Allocation.threadBytes(receiver.get()) - receiverBefore;
             long ticks = Math.max(1, received.get() - receivedBefore);
             notifier.unsubscribe("alloc");
             return BenchRow.value("alloc.tick", Throughput.SECTION, "a Tick's release and delivery (1 kHz)", "idle",

@@ -149,7 +149,7 @@ final class Throughput {
                         "%d messages in %.2f s, queue of %d, consumed %d", messages, elapsedNs / 1e9, WINDOW, consumed[0]));
     }
 
-    /** Bytes allocated by the calling thread, from {@code com.sun.management.ThreadMXBean}. */
+    /** Bytes allocated by a thread, from {@code com.sun.management.ThreadMXBean}. */
     static final class Allocation {
         private static final com.sun.management.ThreadMXBean THREADS =
                 (com.sun.management.ThreadMXBean) ManagementFactory.getThreadMXBean();
@@ -159,6 +159,10 @@ final class Throughput {
 
         static long currentThreadBytes() {
             return THREADS.getCurrentThreadAllocatedBytes();
+        }
+
+        static long threadBytes(Thread thread) {
+            return THREADS.getThreadAllocatedBytes(thread.threadId());
         }
     }
 }
