@@ -10,17 +10,13 @@ import io.etherware.core.message.Profile;
 /**
  * Test component for migrations: counts {@link Seq} messages and reports each to {@link #SINK} as
  * a {@link Counted}, at the message's QoS; its count and last sequence are its state. The node that
- * handled a message is the node in the report's message id. Its contents are registered so they
- * cross nodes.
+ * handled a message is the node in the report's message id. The nodes it runs on or reports to
+ * register its contents ({@link #register}) so they cross nodes.
  */
 public class ReportingCounter implements Component {
 
     /** Where the reports go. */
     public static final Profile SINK = Profile.of("sink");
-
-    static {
-        register(ContentsTypes.shared());
-    }
 
     protected long count;
     protected long lastSequence = -1;

@@ -31,7 +31,7 @@ public final class RoundTripDemo {
                 new MessageId("node-2", 1),
                 null);
 
-        MessageCodec codec = new MessageCodec();
+        MessageCodec codec = new MessageCodec(new io.etherware.core.message.ContentsTypes());
         byte[] xml = codec.encode(tick);
         Message decoded = codec.decode(xml);
 

@@ -76,9 +76,13 @@ public final class MessageCodec {
     private final ObjectReader reader;
     private final ObjectWriter writer;
 
-    /** A codec with the default limits over {@link ContentsTypes#shared()}. */
-    public MessageCodec() {
-        this(builder());
+    /**
+     * A codec with the default limits over {@code types}.
+     *
+     * @param types the contents types it carries, e.g. a node's {@code Kernel.contentsTypes()}
+     */
+    public MessageCodec(ContentsTypes types) {
+        this(builder().contentsTypes(types));
     }
 
     private MessageCodec(Builder builder) {
@@ -236,7 +240,7 @@ public final class MessageCodec {
      * use it on one thread, then share the codec.
      */
     public static final class Builder {
-        private ContentsTypes contentsTypes = ContentsTypes.shared();
+        private ContentsTypes contentsTypes = new ContentsTypes();
         private int maxDocumentBytes = DEFAULT_MAX_DOCUMENT_BYTES;
         private int maxNestingDepth = DEFAULT_MAX_NESTING_DEPTH;
         private int maxTextLength = DEFAULT_MAX_TEXT_LENGTH;
@@ -244,7 +248,10 @@ public final class MessageCodec {
         private Builder() {
         }
 
-        /** The registry of contents types; default {@link ContentsTypes#shared()}. */
+        /**
+         * The registry of contents types; default a new one with only the built-in types. Give the
+         * node's ({@code Kernel.contentsTypes()}) for a codec that carries a node's messages.
+         */
         public Builder contentsTypes(ContentsTypes types) {
             this.contentsTypes = Objects.requireNonNull(types, "contentsTypes");
             return this;

@@ -50,10 +50,6 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
 
     private static final Logger log = LoggerFactory.getLogger(Kernel.class);
 
-    static {
-        registerContents(ContentsTypes.shared());
-    }
-
     private final KernelCore core;
 
     private EtherwareNode(NodeConfig config) {
@@ -72,7 +68,8 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
 
     /**
      * Registers the kernel's notices ({@code undeliverable}, {@code request-failed}) in a
-     * contents registry; done for {@link ContentsTypes#shared()} when this class loads.
+     * contents registry. A node does this for its own registry ({@link #contentsTypes()}); call it
+     * for a codec built apart from a node that must read a node's notices.
      */
     public static void registerContents(ContentsTypes types) {
         KernelCore.registerContents(types);
@@ -315,6 +312,11 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
     }
 
     @Override
+    public ContentsTypes contentsTypes() {
+        return core.contentsTypes();
+    }
+
+    @Override
     public NodeStats stats() {
         return core.stats();
     }
@@ -376,6 +378,12 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
 
         public Builder drainTimeout(Duration value) {
             config.drainTimeout(value);
+            return this;
+        }
+
+        /** See {@link NodeConfig.Builder#contentsTypes(ContentsTypes)}. */
+        public Builder contentsTypes(ContentsTypes value) {
+            config.contentsTypes(value);
             return this;
         }
 

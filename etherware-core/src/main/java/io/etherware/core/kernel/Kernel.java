@@ -175,6 +175,15 @@ public interface Kernel {
     NodeStats stats();
 
     /**
+     * The node's registry of contents types ({@link NodeConfig#contentsTypes()}): what the codecs
+     * that carry this node's messages (the network's, state snapshots) can encode and decode.
+     * Services register their own types here when they are installed on the node.
+     *
+     * @return the node's registry; thread-safe
+     */
+    io.etherware.core.message.ContentsTypes contentsTypes();
+
+    /**
      * Bytes of messages that arrived through node {@code viaNodeId} (their
      * {@link io.etherware.core.message.Origin#wireBytes()}) and wait in this node's queues, not
      * yet handled or passed on: what a peer has made this node hold, so the network layer can

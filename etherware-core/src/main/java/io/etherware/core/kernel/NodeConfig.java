@@ -1,5 +1,6 @@
 package io.etherware.core.kernel;
 
+import io.etherware.core.message.ContentsTypes;
 import io.etherware.core.message.Profile;
 import io.etherware.core.scheduler.FifoScheduler;
 import io.etherware.core.scheduler.Scheduler;
@@ -22,10 +23,14 @@ import java.util.function.Supplier;
  * @param defaultRequestTimeoutNs timeout of requests made without one; &gt; 0
  * @param drainTimeoutNs          how long {@code close()} lets queued messages be delivered before
  *                                it discards (and counts) the rest; &gt;= 0
+ * @param contentsTypes           the node's registry of contents types: what its codecs (the
+ *                                network's, state snapshots) carry. The node adds the kernel's own
+ *                                notices, services add theirs when installed, the code that builds
+ *                                the node adds the application's. Thread-safe; it only grows
  */
 public record NodeConfig(String nodeId, Supplier<? extends Scheduler> scheduler, NodeClock clock,
                          SupervisionPolicy supervision, Escalation escalation, long defaultRequestTimeoutNs,
-                         long drainTimeoutNs) {
+                         long drainTimeoutNs, ContentsTypes contentsTypes) {
 
     public NodeConfig {
         if (nodeId == null || !Profile.isName(nodeId)) {
@@ -44,6 +49,7 @@ public record NodeConfig(String nodeId, Supplier<? extends Scheduler> scheduler,
             throw new IllegalArgumentException("drainTimeoutNs=" + drainTimeoutNs
                     + " must be >= 0 (0 discards whatever is queued at close)");
         }
+        Objects.requireNonNull(contentsTypes, "contentsTypes=null: leave the default (a new registry) or give one");
     }
 
     /** A builder holding the defaults. */
@@ -54,7 +60,8 @@ public record NodeConfig(String nodeId, Supplier<? extends Scheduler> scheduler,
     /**
      * Builds a {@link NodeConfig}. Defaults: node id {@code node}, {@link FifoScheduler}, the
      * system clock, {@link SupervisionPolicy#DEFAULT}, {@link Escalation#RESET_ALL}, request
-     * timeout 1 s, drain timeout 1 s. Not thread-safe; use it on one thread.
+     * timeout 1 s, drain timeout 1 s, a new {@link ContentsTypes} (the built-in types; the node adds
+     * its own). Not thread-safe; use it on one thread.
      */
     public static final class Builder {
         private String nodeId = "node";
@@ -64,6 +71,7 @@ public record NodeConfig(String nodeId, Supplier<? extends Scheduler> scheduler,
         private Escalation escalation = Escalation.RESET_ALL;
         private long defaultRequestTimeoutNs = Duration.ofSeconds(1).toNanos();
         private long drainTimeoutNs = Duration.ofSeconds(1).toNanos();
+        private ContentsTypes contentsTypes;
 
         Builder() {
         }
@@ -103,10 +111,20 @@ public record NodeConfig(String nodeId, Supplier<? extends Scheduler> scheduler,
             return this;
         }
 
+        /**
+         * The node's contents types, with the application's registered, e.g.
+         * {@code contentsTypes(new ContentsTypes().register("reading", Reading.class))}; default a new
+         * registry. A registry may be shared by the nodes of one process that carry the same types.
+         */
+        public Builder contentsTypes(ContentsTypes value) {
+            contentsTypes = Objects.requireNonNull(value, "contentsTypes=null: leave the default or give a registry");
+            return this;
+        }
+
         /** The validated configuration. */
         public NodeConfig build() {
             return new NodeConfig(nodeId, scheduler, clock, supervision, escalation, defaultRequestTimeoutNs,
-                    drainTimeoutNs);
+                    drainTimeoutNs, contentsTypes != null ? contentsTypes : new ContentsTypes());
         }
     }
 }

@@ -1,5 +1,6 @@
 package io.etherware.core.message;
 
+import java.lang.reflect.Modifier;
 import java.util.Map;
 import java.util.Objects;
 import java.util.Set;
@@ -14,17 +15,23 @@ import java.util.regex.Pattern;
  * an arbitrary class. Registration is idempotent for the same pair and an error for a conflicting
  * one. Thread-safe; lookups are lock-free.
  *
- * <p>{@link #shared()} is the process-wide registry that codecs use by default; it starts with
- * the built-in types {@code empty}, {@code text} and {@code tick}. Modules register their own
- * types once, typically from a static initializer or at node start.
+ * <p>There is no process-wide registry: each node has its own ({@code NodeConfig.contentsTypes},
+ * {@code Kernel.contentsTypes()}) and each codec is given one. A registry starts with the
+ * built-in types {@code empty}, {@code text} and {@code tick}; the code that builds a node or a
+ * codec registers the types it will carry, explicitly, with each module's
+ * {@code registerContents(ContentsTypes)}: what decodes never depends on which classes happened
+ * to load.
+ *
+ * <p>The codec reads records by reflection from module {@code io.etherware.core}, so registration
+ * checks that it can: a public record in a package its module exports, or any record in a package
+ * its module opens to {@code io.etherware.core}. A record that the codec could not read is refused
+ * here, at once, rather than failing every message that carries it later.
  */
 public final class ContentsTypes {
 
     /** Allowed type names: a lower-case letter, then letters, digits, '.', '_' or '-'. */
     public static final String TYPE_NAME_PATTERN = "[a-z][A-Za-z0-9_.-]*";
     private static final Pattern TYPE_NAME = Pattern.compile(TYPE_NAME_PATTERN);
-
-    private static final ContentsTypes SHARED = new ContentsTypes();
 
     private final Map<String, Class<? extends Contents>> byName = new ConcurrentHashMap<>();
     private final Map<Class<? extends Contents>, String> byType = new ConcurrentHashMap<>();
@@ -36,16 +43,17 @@ public final class ContentsTypes {
         register("tick", Tick.class);
     }
 
-    /** The process-wide registry. */
-    public static ContentsTypes shared() {
-        return SHARED;
-    }
-
     /**
      * Registers {@code type} under {@code name}.
      *
-     * @throws IllegalArgumentException if the name is malformed, the type is not a record, or
-     *                                  either is already registered with another partner
+     * @param name the type's name on the wire, matching {@link #TYPE_NAME_PATTERN}
+     * @param type the record carried under that name
+     * @param <T>  the record type
+     * @return this registry, for chaining
+     * @throws IllegalArgumentException if the name is malformed, the type is not a record, the codec
+     *                                  could not read it (its package is neither exported with the
+     *                                  record public, nor opened to {@code io.etherware.core}), or
+     *                                  name or type is already registered with another partner
      */
     public synchronized <T extends Record & Contents> ContentsTypes register(String name, Class<T> type) {
         return registerAny(name, type);
@@ -60,6 +68,7 @@ public final class ContentsTypes {
         if (!type.isRecord()) {
             throw new IllegalArgumentException("contents type " + type.getName() + " must be a record");
         }
+        requireReadable(type);
         Class<? extends Contents> existing = byName.get(name);
         if (existing != null && existing != type) {
             throw new IllegalArgumentException("contents type name '" + name + "' is already registered for "
@@ -73,6 +82,32 @@ public final class ContentsTypes {
         byName.put(name, type);
         byType.put(type, name);
         return this;
+    }
+
+    /**
+     * Refuses a record the codec, in module {@code io.etherware.core}, could not read by reflection:
+     * in a named module, its package must be opened to {@code io.etherware.core}, or the record
+     * (and every class enclosing it) public in an exported package.
+     */
+    private static void requireReadable(Class<?> type) {
+        Module module = type.getModule();
+        Module codec = ContentsTypes.class.getModule();
+        String pkg = type.getPackageName();
+        if (!module.isNamed() || module.isOpen(pkg, codec)) {
+            return;
+        }
+        boolean publicAllTheWay = true;
+        for (Class<?> c = type; c != null; c = c.getEnclosingClass()) {
+            publicAllTheWay &= Modifier.isPublic(c.getModifiers());
+        }
+        if (publicAllTheWay && module.isExported(pkg, codec)) {
+            return;
+        }
+        throw new IllegalArgumentException("contents type " + type.getName() + " cannot be read by the codec: module "
+                + module.getName() + " " + (module.isExported(pkg, codec) ? "exports" : "neither exports nor opens")
+                + " package " + pkg + (publicAllTheWay ? "" : " and the record is not public")
+                + "; add 'opens " + pkg + " to io.etherware.core;' to " + module.getName() + "'s module-info.java"
+                + (publicAllTheWay ? "" : " (or make the record public in an exported package)"));
     }
 
     /** The record type registered under {@code name}, or null. */

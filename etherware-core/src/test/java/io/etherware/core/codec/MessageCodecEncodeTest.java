@@ -88,15 +88,17 @@ class MessageCodecEncodeTest {
     void shouldRejectAMessageOfUnregisteredContentsWhenTheRegistryIsAnother() {
         Message angles = message(QoS.NONE, new TestContents.Angles(1, 2, 3, 4));
         byte[] document = codec.encode(angles);
-        var plain = new MessageCodec();
+        var plain = new MessageCodec(new ContentsTypes());
         var error = assertThrows(MessageFormatException.class, () -> plain.decode(document));
         assertTrue(error.getMessage().startsWith("unknown contents type 'angles'"), error.getMessage());
     }
 
     @Test
-    void shouldUseTheSharedRegistryAndDocumentedLimitsByDefault() {
-        var defaults = new MessageCodec();
-        assertSame(ContentsTypes.shared(), defaults.contentsTypes());
+    void shouldUseTheGivenRegistryAndDocumentedLimitsByDefault() {
+        var types = new ContentsTypes();
+        var defaults = new MessageCodec(types);
+        assertSame(types, defaults.contentsTypes());
+        assertEquals(java.util.Set.of("empty", "text", "tick"), MessageCodec.builder().build().contentsTypes().names());
         assertEquals(1 << 20, defaults.maxDocumentBytes());
         assertEquals(MessageCodec.DEFAULT_MAX_NESTING_DEPTH, defaults.maxNestingDepth());
         assertEquals(MessageCodec.DEFAULT_MAX_TEXT_LENGTH, defaults.maxTextLength());

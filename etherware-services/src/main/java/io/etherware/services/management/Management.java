@@ -43,10 +43,6 @@ public final class Management {
     /** The QoS of management requests. */
     public static final QoS REQUEST_QOS = QoS.of(Criticality.HIGH);
 
-    static {
-        registerContents(ContentsTypes.shared());
-    }
-
     private Management() {
     }
 
@@ -58,8 +54,13 @@ public final class Management {
     /**
      * Registers the management contents ({@code etherware.upgrade}, {@code etherware.upgradeResult},
      * {@code etherware.managementFailure}, {@code etherware.migrate}, {@code etherware.migrationResult},
-     * {@code etherware.migrationStep}, {@code etherware.migrationStepDone}) in {@code types}; done for {@link ContentsTypes#shared()}
-     * when this class or the {@link ManagementService} loads.
+     * {@code etherware.migrationStep}, {@code etherware.migrationStepDone}) in {@code types}. A
+     * {@link ManagementService} does this for its node, and so do the methods here that take a
+     * {@link Kernel}; a node whose components ask another node's service (the forms taking a
+     * {@link ComponentContext}) calls it for its own registry ({@code node.contentsTypes()}).
+     * Idempotent.
+     *
+     * @param types the registry to add the management types to
      */
     public static void registerContents(ContentsTypes types) {
         types.register("etherware.upgrade", UpgradeRequest.class);
@@ -89,6 +90,7 @@ public final class Management {
     public static CompletableFuture<UpgradeResult> upgrade(Kernel kernel, String nodeId, Profile target,
                                                            Implementation implementation, Duration timeout) {
         Objects.requireNonNull(kernel, "kernel");
+        registerContents(kernel.contentsTypes());
         var request = new Message(profileOf(nodeId), kernel.profile(), kernel.clock().epochNanos(), REQUEST_QOS,
                 UpgradeRequest.of(target, implementation), kernel.newMessageId(), null);
         return kernel.request(request, timeout.toNanos()).thenApply(Management::upgradeResultOf);
@@ -141,6 +143,7 @@ public final class Management {
     public static CompletableFuture<MigrationResult> migrate(Kernel kernel, String fromNode, MigrateRequest request,
                                                              Duration timeout) {
         Objects.requireNonNull(kernel, "kernel");
+        registerContents(kernel.contentsTypes());
         var message = new Message(profileOf(fromNode), kernel.profile(), kernel.clock().epochNanos(), REQUEST_QOS,
                 request, kernel.newMessageId(), null);
         return kernel.request(message, timeout.toNanos()).thenApply(Management::migrationResultOf);

@@ -8,7 +8,6 @@ import io.etherware.core.kernel.EtherwareNode;
 import io.etherware.core.kernel.Kernel;
 import io.etherware.core.kernel.ProfileResolutionException;
 import io.etherware.core.kernel.SwapTimings;
-import io.etherware.core.message.ContentsTypes;
 import io.etherware.core.message.Criticality;
 import io.etherware.core.message.QoS;
 import io.etherware.core.message.Message;
@@ -86,10 +85,6 @@ public final class ManagementService implements Component {
     private static final String UPGRADE = "upgrade";
     private static final String MIGRATE = "migrate";
 
-    static {
-        Management.registerContents(ContentsTypes.shared());
-    }
-
     private final Kernel kernel;
     private final ManagementConfig config;
     private final NetworkMessenger network;
@@ -126,6 +121,7 @@ public final class ManagementService implements Component {
                               Map<Profile, URLClassLoader> jarLoaders) {
         this.kernel = Objects.requireNonNull(kernel, "kernel");
         this.config = Objects.requireNonNull(config, "config");
+        Management.registerContents(kernel.contentsTypes());
         this.network = network;
         this.loader = new ImplementationLoader(config.allowlist(), config.trustedSigners(), config.classLoader());
         this.access = new AccessControl(kernel, config);

@@ -21,7 +21,9 @@ import java.util.Objects;
  * @param peers                     the nodes to dial and keep dialing
  * @param connectionFactory         makes the sockets (the TLS seam)
  * @param codec                     encodes and decodes messages; its contents types must match the
- *                                  peers'
+ *                                  peers'. Null (the default): a codec over the node's contents
+ *                                  types ({@code Kernel.contentsTypes()}) whose document limit fits
+ *                                  the frame limit, made when the messenger starts
  * @param maxFrameBytes             largest frame accepted from a peer (and sent to one)
  * @param queueCapacity             messages waiting per peer before the least critical are dropped
  * @param windowMessages            messages written to a peer and not yet acknowledged, at most
@@ -87,12 +89,23 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
     /** Smallest {@link #maxFrameBytes}: room for a handshake and a small message. */
     public static final int MIN_FRAME_BYTES = 4096;
 
+    /**
+     * The codec a messenger for {@code kernel} uses: {@link #codec()} if one was given, else one over
+     * the node's contents types whose document limit fits {@link #maxFrameBytes()}.
+     *
+     * @param kernel the node the messenger serves
+     * @return the codec
+     */
+    public MessageCodec codecFor(io.etherware.core.kernel.Kernel kernel) {
+        return codec != null ? codec
+                : MessageCodec.builder().contentsTypes(kernel.contentsTypes()).maxDocumentBytes(maxFrameBytes - 64).build();
+    }
+
     public NetworkConfig {
         Objects.requireNonNull(listenAddress, "listenAddress=null: e.g. listen(new InetSocketAddress(\"0.0.0.0\", 7400))");
         peers = List.copyOf(Objects.requireNonNull(peers, "peers=null"));
         Objects.requireNonNull(connectionFactory, "connectionFactory=null: use ConnectionFactory.plain()");
         requireRange("maxFrameBytes", maxFrameBytes, MIN_FRAME_BYTES, 256 << 20);
-        Objects.requireNonNull(codec, "codec=null: leave the default or give a MessageCodec");
         requireRange("queueCapacity", queueCapacity, 1, 10_000_000);
         requireRange("windowMessages", windowMessages, 4, 1 << 20);
         requirePositive("heartbeatIntervalNs", heartbeatIntervalNs);
@@ -183,7 +196,7 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
 
     /**
      * Builds a {@link NetworkConfig}. Defaults: listen on the loopback interface, any free port;
-     * no peers; plain TCP; a {@link MessageCodec} over the shared contents types whose document
+     * no peers; plain TCP; a {@link MessageCodec} over the node's contents types whose document
      * limit fits the frame limit; frames up to 1 MiB; 10,000 queued messages and 1,024
      * unacknowledged per peer; heartbeat every 500 ms, dead after 3 s of silence; handshake within
      * 2 s, dial within 2 s; redial after 50 ms doubling to 5 s, with 20 % jitter; a peer down for
@@ -409,11 +422,7 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
 
         /** The validated configuration. */
         public NetworkConfig build() {
-            MessageCodec effectiveCodec = codec;
-            if (effectiveCodec == null && maxFrameBytes >= MIN_FRAME_BYTES) {
-                effectiveCodec = MessageCodec.builder().maxDocumentBytes(maxFrameBytes - 64).build();
-            }
-            return new NetworkConfig(listenAddress, peers, connectionFactory, effectiveCodec, maxFrameBytes,
+            return new NetworkConfig(listenAddress, peers, connectionFactory, codec, maxFrameBytes,
                     queueCapacity, windowMessages, heartbeatIntervalNs, heartbeatTimeoutNs, handshakeTimeoutNs,
                     connectTimeoutNs, reconnectInitialBackoffNs, reconnectMaxBackoffNs, reconnectJitter, peerDownGraceNs,
                     timeProbeIntervalNs, timeProbeBurst, timeWindowSize, maxConnections, maxHops, maxPendingHandshakes,

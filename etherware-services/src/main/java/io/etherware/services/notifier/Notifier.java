@@ -68,10 +68,6 @@ public final class Notifier implements AutoCloseable {
     private static final long START_TIMEOUT_NS = TimeUnit.SECONDS.toNanos(10);
     private static final long STOP_TIMEOUT_MS = 5_000;
 
-    static {
-        registerContents(ContentsTypes.shared());
-    }
-
     private final Kernel kernel;
     private final NotifierConfig config;
     private final NodeClock clock;
@@ -100,6 +96,7 @@ public final class Notifier implements AutoCloseable {
     Notifier(Kernel kernel, NotifierConfig config, NodeClock clock, Sleeper sleeper) {
         this.kernel = Objects.requireNonNull(kernel, "kernel");
         this.config = Objects.requireNonNull(config, "config");
+        registerContents(kernel.contentsTypes());
         this.clock = Objects.requireNonNull(clock, "clock");
         // AbsoluteSleeper falls back to parking (and says why) where the kernel sleep is not usable;
         // ReleaseSleeper parks anyway, so it gets a kernel sleeper only when it is one.
@@ -134,11 +131,17 @@ public final class Notifier implements AutoCloseable {
 
     /**
      * Registers the Notifier's message contents ({@code notifier.subscribe},
-     * {@code notifier.unsubscribe}, {@code notifier.retarget}, {@code notifier.reply}); done for
-     * {@link ContentsTypes#shared()} when this class or one of those records loads.
+     * {@code notifier.unsubscribe}, {@code notifier.retarget}, {@code notifier.reply}) in
+     * {@code types}. A Notifier does this for its node; a node that talks to a Notifier on another
+     * node calls it for its own registry ({@code node.contentsTypes()}). Idempotent.
+     *
+     * @param types the registry to add the Notifier's types to
      */
     public static void registerContents(ContentsTypes types) {
-        NotifierContents.register(types);
+        types.register("notifier.subscribe", TickSubscribe.class);
+        types.register("notifier.unsubscribe", TickUnsubscribe.class);
+        types.register("notifier.retarget", TickRetarget.class);
+        types.register("notifier.reply", NotifierReply.class);
     }
 
     /** The profile of this Notifier's component, and the sender of its Ticks. */

@@ -1,7 +1,6 @@
 package io.etherware.services.notifier;
 
 import io.etherware.core.message.Contents;
-import io.etherware.core.message.ContentsTypes;
 
 /**
  * The Notifier's answer ({@code notifier.reply}) to {@link TickSubscribe}, {@link TickUnsubscribe}
@@ -14,10 +13,6 @@ import io.etherware.core.message.ContentsTypes;
  * @param reason         why it was refused, naming the field; null when accepted
  */
 public record NotifierReply(String name, boolean accepted, Long firstReleaseNs, String reason) implements Contents {
-
-    static {
-        NotifierContents.register(ContentsTypes.shared());
-    }
 
     static NotifierReply accepted(String name, Long firstReleaseNs) {
         return new NotifierReply(name, true, firstReleaseNs, null);

@@ -1,7 +1,6 @@
 package io.etherware.services.notifier;
 
 import io.etherware.core.message.Contents;
-import io.etherware.core.message.ContentsTypes;
 import io.etherware.core.message.Profile;
 
 /**
@@ -15,7 +14,4 @@ import io.etherware.core.message.Profile;
  */
 public record TickRetarget(String name, Profile target) implements Contents {
 
-    static {
-        NotifierContents.register(ContentsTypes.shared());
-    }
 }

@@ -1,7 +1,6 @@
 package io.etherware.services.notifier;
 
 import io.etherware.core.message.Contents;
-import io.etherware.core.message.ContentsTypes;
 import io.etherware.core.message.Criticality;
 import io.etherware.core.message.Profile;
 import java.util.Objects;
@@ -28,10 +27,6 @@ import java.util.Objects;
 public record TickSubscribe(String name, Profile target, Criticality criticality, long periodNs, long deadlineNs,
                             long wcetNs, Long firstReleaseNs, long maxLatenessNs, boolean backPressure)
         implements Contents {
-
-    static {
-        NotifierContents.register(ContentsTypes.shared());
-    }
 
     public TickSubscribe {
         Objects.requireNonNull(criticality, "criticality");

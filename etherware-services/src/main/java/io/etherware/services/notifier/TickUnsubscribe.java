@@ -1,7 +1,6 @@
 package io.etherware.services.notifier;
 
 import io.etherware.core.message.Contents;
-import io.etherware.core.message.ContentsTypes;
 
 /**
  * A request to the Notifier's component ({@code notifier.unsubscribe}): no more Ticks for the
@@ -12,7 +11,4 @@ import io.etherware.core.message.ContentsTypes;
  */
 public record TickUnsubscribe(String name) implements Contents {
 
-    static {
-        NotifierContents.register(ContentsTypes.shared());
-    }
 }

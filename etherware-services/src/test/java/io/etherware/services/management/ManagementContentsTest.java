@@ -19,10 +19,6 @@ class ManagementContentsTest {
 
     private static final Profile TARGET = Profile.parse("controller[car=1]");
 
-    static {
-        Management.registerContents(io.etherware.core.message.ContentsTypes.shared());
-    }
-
     private static Message carrying(Contents contents) {
         return new Message(Management.profileOf("plant-1"), Profile.parse("etherware.node[id=console]"), 1_000L,
                 Management.REQUEST_QOS, contents, new MessageId("console", 3), null);
@@ -30,7 +26,9 @@ class ManagementContentsTest {
 
     @Test
     void shouldRoundTripEveryManagementContentsThroughTheCodecWhenFieldsAreNullOrSet() {
-        var codec = new MessageCodec();
+        var types = new io.etherware.core.message.ContentsTypes();
+        Management.registerContents(types);
+        var codec = new MessageCodec(types);
         for (Contents contents : List.of(
                 UpgradeRequest.of(TARGET, Implementation.ofClass("com.example.ControllerV2")),
                 UpgradeRequest.of(TARGET, Implementation.fromJar(Path.of("/opt/upgrades/c.jar"), "com.example.C")

@@ -44,8 +44,10 @@ final class MigrationNode implements AutoCloseable {
     /** A node on loopback (any port) dialing {@code peers}; {@code scheduler} null for the default. */
     static MigrationNode start(String nodeId, Supplier<? extends Scheduler> scheduler, ManagementConfig config,
                                InetSocketAddress... peers) {
-        ReportingCounter.register(ContentsTypes.shared());
-        var builder = EtherwareNode.builder().nodeId(nodeId).defaultRequestTimeout(Duration.ofSeconds(30));
+        var types = new ContentsTypes();
+        ReportingCounter.register(types);
+        var builder = EtherwareNode.builder().nodeId(nodeId).contentsTypes(types)
+                .defaultRequestTimeout(Duration.ofSeconds(30));
         if (scheduler != null) {
             builder.scheduler(scheduler);
         }

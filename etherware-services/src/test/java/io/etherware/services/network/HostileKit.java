@@ -30,8 +30,9 @@ final class HostileKit {
     }
 
     private static MessageCodec codec() {
-        Num.register();
-        return new MessageCodec();
+        var types = Num.register(new io.etherware.core.message.ContentsTypes());
+        io.etherware.core.kernel.EtherwareNode.registerContents(types);
+        return new MessageCodec(types);
     }
 
     /** Answers every request with its own contents; ignores notices about its replies. */

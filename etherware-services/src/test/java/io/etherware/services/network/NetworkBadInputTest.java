@@ -175,7 +175,7 @@ class NetworkBadInputTest {
     void shouldCloseAConnectionThatSkipsMessageNumbers() throws Exception {
         try (var attacker = new RawPeer(b.address())) {
             attacker.handshake("mallory");
-            attacker.data(5, new MessageCodec().encodeToString(message("skipped ahead")));
+            attacker.data(5, new MessageCodec(Num.register(new io.etherware.core.message.ContentsTypes())).encodeToString(message("skipped ahead")));
             assertEquals(CloseReason.SEQUENCE_ERROR.code(), byeOf(attacker.readUntilClosed()).byeCode());
         }
         assertOnlyTheOffenderWasClosed(CloseReason.SEQUENCE_ERROR);
@@ -203,7 +203,7 @@ class NetworkBadInputTest {
     void shouldDeliverAMessageFromAPeerThatFollowsTheDocument() throws Exception {
         try (var peer = new RawPeer(b.address())) {
             peer.handshake("mallory");
-            peer.data(0, new MessageCodec().encodeToString(message("by the book")));
+            peer.data(0, new MessageCodec(Num.register(new io.etherware.core.message.ContentsTypes())).encodeToString(message("by the book")));
             Message arrived = sunk.poll(30, TimeUnit.SECONDS);
             assertEquals(new Text("by the book"), arrived.contents());
             assertEquals(new MessageId("mallory", 1), arrived.messageId());

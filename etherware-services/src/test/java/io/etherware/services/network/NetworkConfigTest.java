@@ -1,6 +1,7 @@
 package io.etherware.services.network;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertSame;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
@@ -34,9 +35,13 @@ class NetworkConfigTest {
     }
 
     @Test
-    void shouldFitTheDefaultCodecToTheFrameLimit() {
+    void shouldFitTheDefaultCodecToTheFrameLimitOverTheNodesContentsTypes() {
         NetworkConfig config = NetworkConfig.builder().maxFrameBytes(64 * 1024).build();
-        assertTrue(config.codec().maxDocumentBytes() < config.maxFrameBytes());
+        var node = EtherwareNode.builder().nodeId("fit").build();
+        var codec = config.codecFor(node);
+        assertTrue(codec.maxDocumentBytes() < config.maxFrameBytes(), () -> "document limit " + codec.maxDocumentBytes());
+        assertSame(node.contentsTypes(), codec.contentsTypes());
+        assertTrue(codec.contentsTypes().names().contains("undeliverable"), () -> codec.contentsTypes().names().toString());
         assertEquals(NetworkConfig.DEFAULT_MAX_FRAME_BYTES, NetworkConfig.builder().build().maxFrameBytes());
     }
 

@@ -22,10 +22,10 @@ class ReadmeExampleTest {
     void shouldRunTheTwoNodeReadmeExample() throws Exception {
         // README example begins
         record Reading(double celsius) implements Contents {}
-        ContentsTypes.shared().register("reading", Reading.class); // on every node: the wire name
-        try (var plant = EtherwareNode.builder().nodeId("plant").build().start();
+        var types = new ContentsTypes().register("reading", Reading.class); // on every node: the wire name
+        try (var plant = EtherwareNode.builder().nodeId("plant").contentsTypes(types).build().start();
              var plantNet = NetworkMessenger.start(plant, NetworkConfig.builder().listen("127.0.0.1", 0).build());
-             var control = EtherwareNode.builder().nodeId("control").build().start();
+             var control = EtherwareNode.builder().nodeId("control").contentsTypes(types).build().start();
              var controlNet = NetworkMessenger.start(control, NetworkConfig.builder().peer(plantNet.localAddress()).build())) {
             plant.add(Profile.of("thermometer"), () -> (message, context) -> context.reply(message, new Reading(19.5)));
             controlNet.awaitResolvable(Profile.of("thermometer"), Duration.ofSeconds(5)); // announced by plant

@@ -22,7 +22,6 @@ final class TestNode implements AutoCloseable {
     static final int LANES = 2;
 
     static NetworkConfig.Builder config() {
-        Num.register();
         return NetworkConfig.builder()
                 .listen(new InetSocketAddress("127.0.0.1", 0))
                 .reconnectBackoff(Duration.ofMillis(20), Duration.ofMillis(200), 0.2)
@@ -36,6 +35,7 @@ final class TestNode implements AutoCloseable {
     static TestNode start(String nodeId, NodeClock clock, NetworkConfig.Builder config,
                           UnaryOperator<EtherwareNode.Builder> nodeSettings) {
         EtherwareNode node = nodeSettings.apply(EtherwareNode.builder().nodeId(nodeId).clock(clock)
+                .contentsTypes(Num.register(new io.etherware.core.message.ContentsTypes()))
                 .defaultRequestTimeout(Duration.ofSeconds(30))).build();
         node.start();
         try {

@@ -281,7 +281,9 @@ class NotifierNodeTest {
 
     @Test
     void shouldCarryItsMessagesThroughTheXmlCodec() {
-        var codec = new MessageCodec();
+        var types = new io.etherware.core.message.ContentsTypes();
+        Notifier.registerContents(types);
+        var codec = new MessageCodec(types);
         for (Contents contents : List.<Contents>of(
                 TickSubscribe.periodic(Criticality.HIGH, PERIOD_NS).named("loop").to(CONTROLLER).startingAt(-42L),
                 TickSubscribe.oneShot(Criticality.LOW, 123L), new TickUnsubscribe("loop"),

@@ -29,6 +29,8 @@ import java.util.function.Supplier;
  */
 final class RecordingKernel implements Kernel {
 
+    private final io.etherware.core.message.ContentsTypes contentsTypes = new io.etherware.core.message.ContentsTypes();
+
     private final NodeClock clock;
     private final AtomicLong messageSequence = new AtomicLong();
     private final List<Message> sent = new ArrayList<>();
@@ -112,6 +114,11 @@ final class RecordingKernel implements Kernel {
     @Override
     public NodeClock clock() {
         return clock;
+    }
+
+    @Override
+    public io.etherware.core.message.ContentsTypes contentsTypes() {
+        return contentsTypes;
     }
 
     @Override

@@ -59,7 +59,7 @@ final class Loopback {
     List<BenchRow> measure() throws Exception {
         Histogram messengerNs = Histograms.latencyNs();
         Histogram rawNs = Histograms.latencyNs();
-        var codec = new MessageCodec();
+        var codec = new MessageCodec(new io.etherware.core.message.ContentsTypes());
         try (var b = EtherwareNode.builder().nodeId("bench-b").build().start();
              var bNet = NetworkMessenger.start(b, NetworkConfig.builder().listen("127.0.0.1", 0).build());
              var a = EtherwareNode.builder().nodeId("bench-a").build().start();

@@ -54,15 +54,15 @@ final class MigrationGap implements GapMeasurement {
 
     @Override
     public BenchRow measure(BenchConfig config, int repetitions) throws Exception {
-        ContentsTypes.shared().register("bench.seq", Seq.class).register("bench.chainState", ChainState.class);
+        var types = new ContentsTypes().register("bench.seq", Seq.class).register("bench.chainState", ChainState.class);
         var gapsNs = new long[repetitions];
         int measured = 0;
         long held = 0;
         int warmup = Math.min(MAX_WARMUP, repetitions);
         Chain.breaks.set(0);
-        try (var a = EtherwareNode.builder().nodeId("bench-mig-a").build().start();
+        try (var a = EtherwareNode.builder().nodeId("bench-mig-a").contentsTypes(types).build().start();
                 var aNet = NetworkMessenger.start(a, loopback().build());
-                var b = EtherwareNode.builder().nodeId("bench-mig-b").build().start();
+                var b = EtherwareNode.builder().nodeId("bench-mig-b").contentsTypes(types).build().start();
                 var bNet = NetworkMessenger.start(b, loopback().peer(aNet.localAddress()).build())) {
             // Each node asks the other to move the loop to it, and receives it from the other.
             ManagementService.install(a, management(b.nodeId()), aNet);

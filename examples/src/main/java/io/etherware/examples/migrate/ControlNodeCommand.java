@@ -57,11 +57,10 @@ public final class ControlNodeCommand implements Callable<Integer> {
         InetSocketAddress plant = address(connect);
         spec.commandLine().getErr().println("migrate-node: " + MigrateConfig.CONTROL_NODE + " starting, dialing " + plant);
         spec.commandLine().getErr().flush();
-        CycleReport.register();
         PrintWriter out = spec.commandLine().getOut();
         try (var node = EtherwareNode.builder().nodeId(MigrateConfig.CONTROL_NODE)
                 .scheduler(Schedulers::etherwareRt).build().start();
-                var net = NetworkMessenger.start(node, NetworkConfig.builder().codec(WarmUp.warmedCodec(node.nodeId()))
+                var net = NetworkMessenger.start(node, NetworkConfig.builder().codec(WarmUp.warmedCodec(node))
                         .listen(new InetSocketAddress("127.0.0.1", 0)).peer(plant).build());
                 ControlListeners.Registration registration = ControlListeners.register(listener,
                         CycleReport.forwarder(node))) {

@@ -33,9 +33,12 @@ public record CycleReport(ControlCycle cycle) implements Contents {
         Objects.requireNonNull(cycle, "cycle");
     }
 
-    /** Registers the type in the shared registry (idempotent); every node of the scenario does. */
-    public static void register() {
-        ContentsTypes.shared().register(TYPE, CycleReport.class);
+    /**
+     * Registers the type in {@code types} (idempotent); every node of the scenario does, on its own
+     * registry.
+     */
+    public static ContentsTypes register(ContentsTypes types) {
+        return types.register(TYPE, CycleReport.class);
     }
 
     /**
@@ -45,14 +48,17 @@ public record CycleReport(ControlCycle cycle) implements Contents {
      */
     public static ControlListener forwarder(EtherwareNode node) {
         Objects.requireNonNull(node, "node");
-        register();
+        register(node.contentsTypes());
         return cycle -> node.send(RECORDER, new CycleReport(cycle), QOS);
     }
 
-    /** The recorder: a component that hands every report it receives to {@code listener}. */
-    public static Supplier<Component> recorder(ControlListener listener) {
+    /**
+     * The recorder on {@code node}: a component that hands every report it receives to
+     * {@code listener}. Registers the type in the node's registry.
+     */
+    public static Supplier<Component> recorder(EtherwareNode node, ControlListener listener) {
         Objects.requireNonNull(listener, "listener");
-        register();
+        register(node.contentsTypes());
         return () -> (message, context) -> listener.onCycle(message.contentsAs(CycleReport.class).cycle());
     }
 }

@@ -118,10 +118,10 @@ public final class MigrateScenario {
         try (ControlListeners.Registration registration = ControlListeners.register(listenerName, local);
                 PendulumRig rig = new PendulumRig(MigrateConfig.PLANT_NODE, () -> scheduler, initial,
                         new PlantWiring(config.baudRate()))) {
-            rig.node().add(CycleReport.RECORDER, CycleReport.recorder(remote));
+            rig.node().add(CycleReport.RECORDER, CycleReport.recorder(rig.node(), remote));
             rig.node().start();
             try (NetworkMessenger net = NetworkMessenger.start(rig.node(), NetworkConfig.builder()
-                    .codec(WarmUp.warmedCodec(rig.node().nodeId())).listen(new InetSocketAddress("127.0.0.1", 0))
+                    .codec(WarmUp.warmedCodec(rig.node())).listen(new InetSocketAddress("127.0.0.1", 0))
                     .build())) {
                 // Node 2 moves the controller here: its migration steps are requests from node 2.
                 ManagementService.install(rig.node(), MigrateConfig.management(MigrateConfig.CONTROL_NODE), net);

@@ -1,6 +1,7 @@
 package io.etherware.examples.migrate;
 
 import io.etherware.core.codec.MessageCodec;
+import io.etherware.core.kernel.Kernel;
 import io.etherware.core.message.Contents;
 import io.etherware.core.message.Criticality;
 import io.etherware.core.message.Message;
@@ -40,11 +41,15 @@ public final class WarmUp {
     private WarmUp() {
     }
 
-    /** A codec for a node's messenger, warmed with the scenario's message types. */
-    public static MessageCodec warmedCodec(String nodeId) {
-        PendulumContents.register();
-        CycleReport.register();
-        MessageCodec codec = MessageCodec.builder().build();
+    /**
+     * A codec for a node's messenger over the node's contents types, with the scenario's message
+     * types registered there, warmed with them.
+     */
+    public static MessageCodec warmedCodec(Kernel node) {
+        String nodeId = node.nodeId();
+        PendulumContents.register(node.contentsTypes());
+        CycleReport.register(node.contentsTypes());
+        MessageCodec codec = MessageCodec.builder().contentsTypes(node.contentsTypes()).build();
         long periodNs = 15_000_000L;
         List<Contents> samples = List.of(
                 new Tick(1_000_000L, 1, periodNs),

@@ -107,7 +107,6 @@ public final class NetStressNodeCommand implements Callable<Integer> {
         PrintWriter err = spec.commandLine().getErr();
         err.println("netstress-node: " + NetStressScenario.CONTROL_NODE + " (" + variant.title() + ") dialing " + plant);
         err.flush();
-        CycleReport.register();
         PrintWriter out = spec.commandLine().getOut();
         io.etherware.rt.platform.CpuSet realtimeCpus;
         try {
@@ -121,7 +120,7 @@ public final class NetStressNodeCommand implements Callable<Integer> {
         try (var node = EtherwareNode.builder().nodeId(NetStressScenario.CONTROL_NODE)
                 .scheduler(() -> realtime != null ? realtime : Schedulers.original()).build().start();
                 var net = NetworkMessenger.start(node, NetStressScenario.network(variant,
-                        WarmUp.warmedCodec(node.nodeId()), realtimeCpus).peer(plant).build());
+                        WarmUp.warmedCodec(node), realtimeCpus).peer(plant).build());
                 ControlListeners.Registration registration = ControlListeners.register(listener,
                         CycleReport.forwarder(node))) {
             node.add(PendulumController.DEFAULT_PROFILE,

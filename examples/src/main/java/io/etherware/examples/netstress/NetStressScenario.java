@@ -205,11 +205,11 @@ public final class NetStressScenario {
         GcActivity gcBefore = GcActivity.now();
         try (PendulumRig rig = new PendulumRig(PLANT_NODE, () -> scheduler, initial,
                 new PlantWiring(settings.baudRate()))) {
-            rig.node().add(CycleReport.RECORDER, CycleReport.recorder(cycles));
+            rig.node().add(CycleReport.RECORDER, CycleReport.recorder(rig.node(), cycles));
             rig.node().add(StressComponent.PROFILE, () -> new StressComponent(settings.stressWorkNs(), events));
             rig.node().start();
             try (NetworkMessenger net = NetworkMessenger.start(rig.node(),
-                    network(variant, WarmUp.warmedCodec(rig.node().nodeId()), realtimeCpus).build())) {
+                    network(variant, WarmUp.warmedCodec(rig.node()), realtimeCpus).build())) {
                 // Node 1's Notifier: SCHED_FIFO 82, above every dispatcher, in both runs.
                 Notifier notifier = Notifier.install(rig.node(), NotifierConfig.defaults().withCpus(realtimeCpus));
                 Path log = settings.out().resolve("node-2-" + variant.key() + logSuffix + ".log");

@@ -1,11 +1,13 @@
 package io.etherware.examples.scenario;
 
 import io.etherware.core.kernel.EtherwareNode;
+import io.etherware.core.message.ContentsTypes;
 import io.etherware.core.scheduler.Scheduler;
 import io.etherware.core.time.NodeClock;
 import io.etherware.pendulum.components.ControlListener;
 import io.etherware.pendulum.components.ControllerConfig;
 import io.etherware.pendulum.components.DspProxy;
+import io.etherware.pendulum.components.PendulumContents;
 import io.etherware.pendulum.components.PendulumController;
 import io.etherware.pendulum.control.GainSet;
 import io.etherware.pendulum.dsp.DspBoard;
@@ -62,7 +64,8 @@ public final class PendulumRig implements AutoCloseable {
         link = SimulatedSerialLink.realTime(wiring.link());
         board = new DspBoard(wiring.board(), PARAMETERS, initial, link.boardEnd());
         DspClient client = new DspClient(link.hostEnd(), clock, wiring.client());
-        node = EtherwareNode.builder().nodeId(nodeId).scheduler(scheduler).clock(clock).build();
+        node = EtherwareNode.builder().nodeId(nodeId).scheduler(scheduler).clock(clock)
+                .contentsTypes(PendulumContents.register(new ContentsTypes())).build();
         node.add(DspProxy.DEFAULT_PROFILE, DspProxy.factory(client));
     }
 

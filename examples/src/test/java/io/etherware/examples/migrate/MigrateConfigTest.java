@@ -32,8 +32,7 @@ class MigrateConfigTest {
 
     @Test
     void shouldCarryACycleAcrossTheWireExactlyIncludingAMissedCyclesNaNs() {
-        CycleReport.register();
-        var codec = MessageCodec.builder().build();
+        var codec = new MessageCodec(CycleReport.register(new io.etherware.core.message.ContentsTypes()));
         var missed = new ControlCycle(7, 100, 110, 120, ControlCycle.Outcome.values()[1], Double.NaN, Double.NaN,
                 Double.NaN, Double.NaN, -1, Double.NaN, 1);
         for (ControlCycle cycle : new ControlCycle[] {missed, new ControlCycle(8, 200, 210, 220,

@@ -44,10 +44,6 @@ public final class DspProxy implements Component {
 
     private static final Logger LOG = LoggerFactory.getLogger(DspProxy.class);
 
-    static {
-        PendulumContents.register();
-    }
-
     private final DspClient client;
     private long angleReads;
     private long torqueCommands;

@@ -6,9 +6,10 @@ import io.etherware.core.message.ContentsTypes;
  * The wire names of the pendulum components' messages and states. The names are part of the wire
  * format: never rename one, register a new type instead.
  *
- * <p>{@link #register()} is idempotent and thread-safe; {@link DspProxy} and
- * {@link PendulumController} call it when they load, and a node that only decodes these messages
- * (a remote monitor) calls it itself.
+ * <p>The code that builds a node hosting or talking to these components registers them in the
+ * node's registry: {@code PendulumContents.register(node.contentsTypes())}, or
+ * {@code EtherwareNode.builder().contentsTypes(PendulumContents.register(new ContentsTypes()))}.
+ * Idempotent and thread-safe.
  */
 public final class PendulumContents {
 
@@ -31,14 +32,11 @@ public final class PendulumContents {
 
     private PendulumContents() {}
 
-    /** Registers every type in {@link ContentsTypes#shared()}. Idempotent. */
-    public static void register() {
-        register(ContentsTypes.shared());
-    }
-
     /**
      * Registers every type in {@code types}. Idempotent.
      *
+     * @param types the registry to add the pendulum's types to
+     * @return {@code types}, for chaining
      * @throws IllegalArgumentException if one of the names is taken by another type
      */
     public static ContentsTypes register(ContentsTypes types) {

@@ -48,10 +48,6 @@ public final class PendulumController implements Component {
 
     private static final Logger LOG = LoggerFactory.getLogger(PendulumController.class);
 
-    static {
-        PendulumContents.register();
-    }
-
     private final ControllerConfig config;
     private final GainSet gains;
     private final ControlListener listener;

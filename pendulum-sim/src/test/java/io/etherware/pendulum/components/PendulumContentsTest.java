@@ -1,6 +1,7 @@
 package io.etherware.pendulum.components;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertSame;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
@@ -27,11 +28,7 @@ import org.junit.jupiter.params.provider.MethodSource;
 /** The components' messages and states on the wire: registered names and exact XML round trips. */
 class PendulumContentsTest {
 
-    static {
-        PendulumContents.register();
-    }
-
-    static final MessageCodec CODEC = new MessageCodec();
+    static final MessageCodec CODEC = new MessageCodec(PendulumContents.register(new ContentsTypes()));
     static final DspProxyCounters COUNTERS = new DspProxyCounters(400, 399, 2, 1, 0, 3, 1, 0, -0.0125);
 
     static Stream<Contents> samples() {
@@ -93,9 +90,9 @@ class PendulumContentsTest {
 
     @Test
     void shouldRegisterStableNamesIdempotently() {
-        PendulumContents.register();
-        PendulumContents.register();
-        ContentsTypes types = ContentsTypes.shared();
+        ContentsTypes types = new ContentsTypes();
+        assertSame(types, PendulumContents.register(types));
+        PendulumContents.register(types);
         assertEquals(ReadAngles.class, types.typeOf("pendulum.read-angles"));
         assertEquals(AnglesReading.class, types.typeOf("pendulum.angles"));
         assertEquals(SetTorque.class, types.typeOf("pendulum.set-torque"));
@@ -109,7 +106,7 @@ class PendulumContentsTest {
     }
 
     @Test
-    void shouldRoundTripThroughAPrivateRegistryToo() {
+    void shouldRefuseAMessageOfAnUnregisteredRegistry() {
         ContentsTypes types = PendulumContents.register(new ContentsTypes());
         MessageCodec codec = MessageCodec.builder().contentsTypes(types).build();
         Message message = envelope(new SetTorque(3, 0.2));

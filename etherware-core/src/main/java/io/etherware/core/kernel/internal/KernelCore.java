@@ -65,10 +65,6 @@ public final class KernelCore implements Kernel, JobRunner {
      */
     static final long PEN_OFFSET = 1L << 62;
 
-    static {
-        registerContents(ContentsTypes.shared());
-    }
-
     private enum NodeState { CREATED, RUNNING, CLOSING, CLOSED }
 
     private final NodeConfig config;
@@ -104,6 +100,7 @@ public final class KernelCore implements Kernel, JobRunner {
         // Ties in arrival order, whatever the scheduler's comparator does with them.
         this.urgency = scheduler.urgency().thenComparingLong(Job::sequence);
         this.requests = new RequestTable(nodeId, this::deliverOutcome, this::mayAnswer);
+        registerContents(config.contentsTypes());
     }
 
     /** Registers the kernel's notices ({@code undeliverable}, {@code request-failed}) in {@code types}. */
@@ -352,6 +349,11 @@ public final class KernelCore implements Kernel, JobRunner {
             return (LocalShell) local.shell();
         }
         throw new IllegalArgumentException("profile '" + profile + "' is hosted on another node; manage it there");
+    }
+
+    @Override
+    public ContentsTypes contentsTypes() {
+        return config.contentsTypes();
     }
 
     @Override

@@ -254,7 +254,7 @@ final class Connection implements Runnable {
         boolean delivered = link.deliverInOrder(this, data.seq(), () -> {
             Message message;
             try {
-                message = context.config().codec().decode(data.xml());
+                message = context.codec().decode(data.xml());
             } catch (MessageFormatException e) {
                 throw new RefusedMessageException(data.seq(), CloseReason.MALFORMED_MESSAGE, "does not decode: "
                         + e.getMessage(), e);

@@ -89,7 +89,7 @@ public final class Engine {
             lanes.add(IoThreads.of(kernel, config, lane));
         }
         this.context = new NetworkContext(nodeId, incarnation, kernel, config, counters, networkTime,
-                new Losses(kernel, counters), lanes, control);
+                new Losses(kernel, counters), lanes, control, config.codecFor(kernel));
         this.admission = new Admission(context);
     }
 
@@ -120,7 +120,7 @@ public final class Engine {
         // on the first message of a control loop.
         Message warmUp = new Message(kernel.profile(), kernel.profile(), kernel.clock().epochNanos(), QoS.NONE,
                 new Text("warm-up"), new MessageId(nodeId, 0), null);
-        config.codec().decode(config.codec().encode(warmUp));
+        context.codec().decode(context.codec().encode(warmUp));
         announcer.start();
         server = config.connectionFactory().listen(config.listenAddress());
         acceptor = new Thread(this::acceptLoop, "etherware-net-" + nodeId + "-accept");

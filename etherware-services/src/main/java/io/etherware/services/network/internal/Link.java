@@ -170,7 +170,7 @@ final class Link {
     private byte[] encode(Message message, Connection connection) {
         byte[] xml;
         try {
-            xml = context.config().codec().encode(message);
+            xml = context.codec().encode(message);
         } catch (MessageFormatException e) {
             throw new IllegalStateException("message " + message.messageId() + " does not encode: " + e.getMessage(), e);
         }

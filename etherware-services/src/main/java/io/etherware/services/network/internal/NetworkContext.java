@@ -23,9 +23,11 @@ import java.util.concurrent.ThreadLocalRandom;
  * @param losses      what happens to messages that cannot be delivered
  * @param lanes       each lane's thread policy and CPUs, by lane
  * @param control     the control thread, for work a caller must not wait for
+ * @param codec       encodes and decodes the messages ({@link NetworkConfig#codecFor})
  */
 record NetworkContext(String nodeId, long incarnation, Kernel kernel, NetworkConfig config, Counters counters,
-                      NetworkTime networkTime, Losses losses, List<IoThreads> lanes, Executor control) {
+                      NetworkTime networkTime, Losses losses, List<IoThreads> lanes, Executor control,
+                      io.etherware.core.codec.MessageCodec codec) {
 
     NetworkContext {
         lanes = List.copyOf(lanes);
