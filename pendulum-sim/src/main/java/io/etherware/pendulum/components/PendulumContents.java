@@ -39,6 +39,8 @@ public final class PendulumContents {
     /**
      * Registers every type in {@code types}. Idempotent.
      *
+     * @param types the registry, e.g. the one a codec in a test uses
+     * @return {@code types}, for chaining
      * @throws IllegalArgumentException if one of the names is taken by another type
      */
     public static ContentsTypes register(ContentsTypes types) {
