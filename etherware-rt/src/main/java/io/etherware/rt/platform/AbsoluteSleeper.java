@@ -32,12 +32,21 @@ public final class AbsoluteSleeper implements DeadlineSleeper {
     private AbsoluteSleeper() {
     }
 
-    /** Whether {@code clock_nanosleep} can be used in this JVM. */
+    /**
+     * Whether {@code clock_nanosleep} can be used in this JVM.
+     *
+     * @return true on Linux with native access allowed, libc's {@code clock_nanosleep} and
+     *         {@code clock_gettime} found, and {@code System.nanoTime()} reading CLOCK_MONOTONIC
+     */
     public static boolean isAvailable() {
         return LinuxClock.isAvailable();
     }
 
-    /** Why it cannot; empty when it can. */
+    /**
+     * Why {@code clock_nanosleep} cannot be used.
+     *
+     * @return the reason, for reports; empty when {@link #isAvailable()}
+     */
     public static Optional<String> unavailableReason() {
         return LinuxClock.unavailableReason();
     }
@@ -46,13 +55,23 @@ public final class AbsoluteSleeper implements DeadlineSleeper {
      * An absolute sleeper on {@code clock}, for one thread (it may be made on another): {@code
      * clock_nanosleep} when {@code clock} is {@link NodeClock#system()} and the call is usable, else
      * {@link DeadlineSleeper#parking}.
+     *
+     * @param clock the clock whose {@code nanoTime()} the deadlines are on
+     * @return the sleeper; use it on one thread only
+     * @throws NullPointerException when {@code clock} is null
      */
     public static DeadlineSleeper forClock(NodeClock clock) {
         Objects.requireNonNull(clock, "clock");
         return clock == NodeClock.system() && isAvailable() ? new AbsoluteSleeper() : DeadlineSleeper.parking(clock);
     }
 
-    /** What {@code sleeper} does, for reports: the kernel call, or parking and why. */
+    /**
+     * What a sleeper does, for reports.
+     *
+     * @param sleeper a sleeper, typically from {@link #forClock}
+     * @return the kernel call for this class's sleeper; else {@code LockSupport.parkNanos} and why
+     *         the kernel call is not used
+     */
     public static String describe(DeadlineSleeper sleeper) {
         if (sleeper instanceof AbsoluteSleeper) {
             return "clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME)";
@@ -61,7 +80,14 @@ public final class AbsoluteSleeper implements DeadlineSleeper {
                 + ")";
     }
 
-    /** Sleeps until {@code System.nanoTime()} reaches {@code deadlineNs}; at once if it has. */
+    /**
+     * Sleeps until {@code System.nanoTime()} reaches {@code deadlineNs}; returns at once if it has.
+     * Resumes after a signal; neither an interrupt nor {@code unpark} ends it. Allocates nothing.
+     * Call it only on the thread this sleeper belongs to.
+     *
+     * @param deadlineNs the absolute wake-up time on {@link System#nanoTime()}, in nanoseconds
+     * @throws IllegalStateException when {@code clock_nanosleep} fails with an error other than EINTR
+     */
     @Override
     public void sleepUntil(long deadlineNs) {
         LinuxClock.sleepUntil(deadlineNs, timespec);

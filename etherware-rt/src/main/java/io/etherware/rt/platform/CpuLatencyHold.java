@@ -45,7 +45,13 @@ public final class CpuLatencyHold implements AutoCloseable {
         this.absent = absent;
     }
 
-    /** Requests 0 µs; where that is refused, holds nothing, warns once and says why in {@link #refusal}. */
+    /**
+     * Requests 0 µs by opening {@value #DEVICE} and writing 0. Never throws: where that is refused,
+     * the hold holds nothing, warns once per kind and says why in {@link #refusal}; where the device
+     * is missing, it holds nothing and says so in {@link #state}. Call it at start, not per message.
+     *
+     * @return the hold; {@link #close()} it to release the request
+     */
     public static CpuLatencyHold request() {
         try {
             // WRITE without CREATE: where the device is missing, never make a file of that name.
@@ -71,22 +77,38 @@ public final class CpuLatencyHold implements AutoCloseable {
         }
     }
 
-    /** Not requested: the CPUs idle as the OS likes. */
+    /**
+     * A hold that holds nothing, for when no request is wanted: the CPUs idle as the OS likes.
+     *
+     * @return a new empty hold, whose {@link #close()} does nothing
+     */
     public static CpuLatencyHold none() {
         return new CpuLatencyHold(null, Optional.empty(), false);
     }
 
-    /** Whether the request is in force. */
+    /**
+     * Whether the request is in force.
+     *
+     * @return true when the device was opened and written; {@link #close()} does not reset it
+     */
     public boolean isHeld() {
         return device != null;
     }
 
-    /** Why the request was refused; empty when held or not requested. */
+    /**
+     * Why the request was refused.
+     *
+     * @return the refusal; empty when held, not requested, or the device is missing
+     */
     public Optional<PlatformRefusal> refusal() {
         return refusal;
     }
 
-    /** One line for reports: held, refused and why, or not requested. */
+    /**
+     * This hold's state for reports.
+     *
+     * @return one line: held, refused and why, no device, or not requested
+     */
     public String state() {
         if (device != null) {
             return "cpu latency: " + DEVICE + " held at 0 us (CPUs kept out of deep idle states, as cyclictest does)";

@@ -162,27 +162,50 @@ public final class CpuPartition implements AutoCloseable {
     record Placed(CpuSet cpus, NativeResult result) {
     }
 
-    /** The CPUs of the real-time threads. */
+    /**
+     * The CPUs of the real-time threads.
+     *
+     * @return the CPUs the partition was opened with
+     */
     public CpuSet realtimeCpus() {
         return shared.realtimeCpus;
     }
 
-    /** The CPUs of every other thread (inherit when the partition holds nothing). */
+    /**
+     * The CPUs of every other thread.
+     *
+     * @return the opener's CPUs without the real-time ones; {@link CpuSet#inherit()} when the
+     *         partition holds nothing
+     */
     public CpuSet ordinaryCpus() {
         return shared.ordinaryCpus;
     }
 
-    /** What could not be done at start: threads that could not be moved, or the whole partition. */
+    /**
+     * What could not be done at start.
+     *
+     * @return the threads that could not be moved, or the one refusal of the whole partition; empty
+     *         when everything was done
+     */
     public List<PlatformRefusal> refusals() {
         return shared.refusals;
     }
 
-    /** Ordinary threads the keeper found on a real-time CPU and moved back, since start. */
+    /**
+     * How many ordinary threads the keeper found on a real-time CPU and moved back.
+     *
+     * @return the count since the partition opened, over all holders
+     */
     public long threadsMovedBack() {
         return shared.movedBack.get();
     }
 
-    /** One line for reports. */
+    /**
+     * The partition's state for reports.
+     *
+     * @return one line: the CPUs on each side and the threads moved and refused, or why the
+     *         partition holds nothing
+     */
     public String describe() {
         return shared.describe();
     }

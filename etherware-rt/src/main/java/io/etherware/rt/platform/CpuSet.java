@@ -24,12 +24,23 @@ public final class CpuSet {
         this.cpus = sortedDistinctCpus;
     }
 
-    /** Leave the affinity as inherited. */
+    /**
+     * Leave the affinity as inherited.
+     *
+     * @return the shared empty set that means "no affinity requested"
+     */
     public static CpuSet inherit() {
         return INHERIT;
     }
 
-    /** The given CPUs; at least one, each in [0, {@value #MAX_CPUS}). */
+    /**
+     * The given CPUs.
+     *
+     * @param cpus CPU indexes, at least one, each in [0, {@value #MAX_CPUS}); order and repeats do
+     *             not matter
+     * @return the set, sorted and without repeats
+     * @throws IllegalArgumentException when {@code cpus} is empty or an index is out of range
+     */
     public static CpuSet of(int... cpus) {
         Objects.requireNonNull(cpus, "cpus");
         if (cpus.length == 0) {
@@ -46,8 +57,13 @@ public final class CpuSet {
     }
 
     /**
-     * Parses {@code 0-1,3}; an empty text or {@code inherit} is {@link #inherit()}. Throws
-     * {@link IllegalArgumentException} naming the text and the bad part.
+     * Parses the {@code taskset -c} form.
+     *
+     * @param text comma-separated CPU indexes and ascending ranges, e.g. {@code 0-1,3}, each in
+     *             [0, {@value #MAX_CPUS}); blank or {@code inherit} for {@link #inherit()}
+     * @return the set
+     * @throws IllegalArgumentException naming the text and the bad part, when a part is not an
+     *                                  index or a range, or is out of range
      */
     public static CpuSet parse(String text) {
         Objects.requireNonNull(text, "text");
@@ -75,16 +91,30 @@ public final class CpuSet {
         return new CpuSet(bits.stream().toArray());
     }
 
-    /** Whether this means "leave the inherited affinity". */
+    /**
+     * Whether this means "leave the inherited affinity".
+     *
+     * @return true for {@link #inherit()}
+     */
     public boolean isInherit() {
         return cpus.length == 0;
     }
 
-    /** The CPU indexes, ascending; empty for {@link #inherit()}. */
+    /**
+     * The CPU indexes.
+     *
+     * @return a new array, ascending without repeats; empty for {@link #inherit()}
+     */
     public int[] cpus() {
         return cpus.clone();
     }
 
+    /**
+     * Whether the set names a CPU.
+     *
+     * @param cpu a CPU index
+     * @return true when {@code cpu} is one of {@link #cpus()}; always false for {@link #inherit()}
+     */
     public boolean contains(int cpu) {
         return Arrays.binarySearch(cpus, cpu) >= 0;
     }

@@ -34,22 +34,38 @@ public final class Platform {
         this.warnings = Objects.requireNonNull(warnings, "warnings");
     }
 
-    /** The platform of this JVM. */
+    /**
+     * The platform of this JVM.
+     *
+     * @return the one shared instance, whose refusal warnings are once per JVM
+     */
     public static Platform current() {
         return CURRENT;
     }
 
-    /** Whether the OS calls can be made at all (Linux, libc symbols found, native access allowed). */
+    /**
+     * Whether the OS calls can be made at all.
+     *
+     * @return true on Linux with the libc symbols found and native access allowed
+     */
     public boolean isAvailable() {
         return LinuxNative.isAvailable();
     }
 
-    /** Why the OS calls cannot be made; empty when {@link #isAvailable()}. */
+    /**
+     * Why the OS calls cannot be made.
+     *
+     * @return the reason, for reports; empty when {@link #isAvailable()}
+     */
     public Optional<String> unavailableReason() {
         return LinuxNative.unavailableReason();
     }
 
-    /** The calling thread's kernel thread id (what {@code ps -L} and {@code chrt -p} show), or -1. */
+    /**
+     * The calling thread's kernel thread id.
+     *
+     * @return the id {@code ps -L} and {@code chrt -p} show, or -1 when the platform cannot say
+     */
     public int currentThreadId() {
         return LinuxNative.currentThreadId();
     }
@@ -63,7 +79,12 @@ public final class Platform {
      * real-time priority nobody asked for. The affinity is set first, so the thread is already
      * where it belongs when it becomes real-time. Under a {@link CpuPartition}, {@link
      * CpuSet#inherit()} means the partition's real-time CPUs for a real-time request and its
-     * ordinary CPUs otherwise.
+     * ordinary CPUs otherwise. Refusals are logged once per kind and returned, never thrown.
+     *
+     * @param requested the policy and priority to run at
+     * @param cpus      the CPUs to run on, or {@link CpuSet#inherit()} to leave the affinity alone
+     *                  (outside a partition)
+     * @return what was asked and what the OS reports it granted, with the refusals
      */
     public ThreadGrant configureCurrentThread(ThreadPolicy requested, CpuSet cpus) {
         ThreadGrant grant = configureCurrentThreadWithoutWarning(requested, cpus);
@@ -75,6 +96,11 @@ public final class Platform {
      * {@link #configureCurrentThread}, but leaves the warning to the caller: for code that
      * configures several threads and then warns once for all of them with {@link #warnOnce},
      * most demanding request first, so the fix it quotes is enough for every thread.
+     *
+     * @param requested the policy and priority to run at
+     * @param cpus      the CPUs to run on, or {@link CpuSet#inherit()} to leave the affinity alone
+     *                  (outside a partition)
+     * @return what was asked and what the OS reports it granted, with the refusals, not yet logged
      */
     public ThreadGrant configureCurrentThreadWithoutWarning(ThreadPolicy requested, CpuSet cpus) {
         Objects.requireNonNull(requested, "requested");
@@ -106,7 +132,12 @@ public final class Platform {
      * thread, the JVM's own included, and keeps it so while the partition is open; see {@link
      * CpuPartition}. Call it before the real-time threads start. A JVM has one partition: opening
      * it again with the same CPUs shares it (each holder closes its share), with other CPUs fails.
+     * Where the platform cannot set affinities the partition holds nothing, warns once and says
+     * why in {@link CpuPartition#refusals()}.
      *
+     * @param realtimeCpus the CPUs for the real-time threads; they need not be among the calling
+     *                     thread's CPUs
+     * @return this caller's share of the partition; close it when the real-time threads are done
      * @throws IllegalArgumentException when {@code realtimeCpus} is inherit, names a CPU that is not
      *                                  online, or leaves none of the caller's CPUs for the other threads
      * @throws IllegalStateException    when another partition, with other CPUs, is open
@@ -115,7 +146,12 @@ public final class Platform {
         return CpuPartition.open(realtimeCpus);
     }
 
-    /** This JVM's CPU partition, if one is open. */
+    /**
+     * This JVM's CPU partition, if one is open.
+     *
+     * @return a view of the partition that holds no share (closing it does nothing); empty when
+     *         none is open
+     */
     public Optional<CpuPartition> cpuPartition() {
         return Optional.ofNullable(CpuPartition.current());
     }
@@ -124,14 +160,18 @@ public final class Platform {
      * Logs each refusal at WARN with its errno and fix, unless one of its kind (feature and errno)
      * was already logged in this JVM. Of several refusals of one kind only the first given is
      * quoted: give the most demanding first.
+     *
+     * @param refusals the refusals, most demanding first; may be empty
      */
     public void warnOnce(List<PlatformRefusal> refusals) {
         refusals.forEach(warnings::warnOnce);
     }
 
     /**
-     * The calling thread's policy and priority as the OS reports them; {@link
-     * ThreadPolicy#NON_REALTIME} when the platform cannot say.
+     * The calling thread's policy and priority as the OS reports them.
+     *
+     * @return the policy; {@link ThreadPolicy#NON_REALTIME} when the platform cannot say, or for a
+     *         policy without a static priority (SCHED_BATCH, SCHED_IDLE, SCHED_DEADLINE)
      */
     public ThreadPolicy currentThreadPolicy() {
         return threadPolicy(0).orElse(ThreadPolicy.NON_REALTIME);
@@ -142,6 +182,10 @@ public final class Platform {
      * when it cannot be read (no such thread, platform unavailable). SCHED_BATCH, SCHED_IDLE and
      * SCHED_DEADLINE are reported as {@link ThreadPolicy#NON_REALTIME}: they carry no static
      * priority.
+     *
+     * @param osThreadId a kernel thread id of this process, as from {@link #currentThreadId()}, or
+     *                   0 for the calling thread
+     * @return the policy; empty when it cannot be read
      */
     public Optional<ThreadPolicy> threadPolicy(int osThreadId) {
         NativeResult policy = LinuxNative.getScheduler(osThreadId);
@@ -156,7 +200,11 @@ public final class Platform {
         });
     }
 
-    /** The CPUs the calling thread may run on, as the OS reports; {@link CpuSet#inherit()} if unknown. */
+    /**
+     * The CPUs the calling thread may run on, as the OS reports them.
+     *
+     * @return the CPUs; {@link CpuSet#inherit()} when unknown
+     */
     public CpuSet currentThreadAffinity() {
         int[] cpus = LinuxNative.getAffinity(0);
         return cpus == null || cpus.length == 0 ? CpuSet.inherit() : CpuSet.of(cpus);
@@ -187,6 +235,8 @@ public final class Platform {
      * The soft RLIMIT_RTPRIO: the highest real-time priority an unprivileged thread may take
      * ({@link Long#MAX_VALUE} for unlimited); empty when unknown. Root and CAP_SYS_NICE are not
      * bound by it.
+     *
+     * @return the soft limit, {@link Long#MAX_VALUE} for unlimited; empty when unknown
      */
     public OptionalLong realtimePriorityLimit() {
         long[] limit = LinuxNative.realtimePriorityLimit();

@@ -15,6 +15,12 @@ import java.util.Objects;
  */
 public record PlatformRefusal(String feature, String requested, int errno, String errnoName, String fix) {
 
+    /**
+     * Checks that every text is present.
+     *
+     * @throws NullPointerException when {@code feature}, {@code requested}, {@code errnoName} or
+     *                              {@code fix} is null
+     */
     public PlatformRefusal {
         Objects.requireNonNull(feature, "feature");
         Objects.requireNonNull(requested, "requested");

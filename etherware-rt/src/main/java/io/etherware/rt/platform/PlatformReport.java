@@ -21,6 +21,12 @@ public record PlatformReport(List<ThreadGrant> threads, boolean memoryLockReques
                              Optional<PlatformRefusal> memoryLockRefusal, List<String> processLines,
                              List<PlatformRefusal> processRefusals) {
 
+    /**
+     * Keeps unmodifiable copies of the lists.
+     *
+     * @throws NullPointerException when a list or {@code memoryLockRefusal} is null, or a list
+     *                              holds a null
+     */
     public PlatformReport {
         threads = List.copyOf(threads);
         Objects.requireNonNull(memoryLockRefusal, "memoryLockRefusal");
@@ -28,19 +34,34 @@ public record PlatformReport(List<ThreadGrant> threads, boolean memoryLockReques
         processRefusals = List.copyOf(processRefusals);
     }
 
-    /** A report of thread grants and the memory lock only. */
+    /**
+     * A report of thread grants and the memory lock only, with no process-wide lines.
+     *
+     * @param threads             one grant per dispatcher thread, in dispatcher order
+     * @param memoryLockRequested whether {@code mlockall} was requested
+     * @param memoryLockRefusal   why the memory lock was refused; empty when granted or not requested
+     */
     public PlatformReport(List<ThreadGrant> threads, boolean memoryLockRequested,
                           Optional<PlatformRefusal> memoryLockRefusal) {
         this(threads, memoryLockRequested, memoryLockRefusal, List.of(), List.of());
     }
 
-    /** Whether every thread got the policy it asked for, and every process-wide request was granted. */
+    /**
+     * Whether the OS granted everything asked of it.
+     *
+     * @return true when no thread, no memory lock and no process-wide request was refused
+     */
     public boolean isFullyGranted() {
         return threads.stream().allMatch(grant -> grant.refusals().isEmpty()) && memoryLockRefusal.isEmpty()
                 && processRefusals.isEmpty();
     }
 
-    /** One line per dispatcher, then the memory lock, CPU latency and partition lines when requested. */
+    /**
+     * The report as text lines, for a node's start-up log.
+     *
+     * @return one line per dispatcher, then the memory lock, CPU latency and partition lines when
+     *         they were requested; a new list the caller owns
+     */
     public List<String> lines() {
         var lines = new ArrayList<String>();
         threads.forEach(grant -> lines.add(grant.toLine()));
@@ -52,6 +73,7 @@ public record PlatformReport(List<ThreadGrant> threads, boolean memoryLockReques
         return lines;
     }
 
+    /** {@link #lines()}, joined with the platform's line separator. */
     @Override
     public String toString() {
         return String.join(System.lineSeparator(), lines());

@@ -20,12 +20,20 @@ public enum SchedulingPolicy {
         this.osName = osName;
     }
 
-    /** Whether this is a real-time policy (FIFO or RR). */
+    /**
+     * Whether this is a real-time policy.
+     *
+     * @return true for {@link #FIFO} and {@link #RR}, false for {@link #OTHER}
+     */
     public boolean isRealtime() {
         return this != OTHER;
     }
 
-    /** The name the kernel documentation uses, e.g. {@code SCHED_FIFO}. */
+    /**
+     * The name the kernel documentation uses.
+     *
+     * @return e.g. {@code SCHED_FIFO}
+     */
     public String osName() {
         return osName;
     }

@@ -18,6 +18,12 @@ import java.util.Objects;
 public record ThreadGrant(String threadName, int osThreadId, ThreadPolicy requested, ThreadPolicy granted,
                           CpuSet requestedCpus, CpuSet grantedCpus, List<PlatformRefusal> refusals) {
 
+    /**
+     * Keeps an unmodifiable copy of {@code refusals}.
+     *
+     * @throws NullPointerException when a component other than {@code osThreadId} is null, or
+     *                              {@code refusals} holds a null
+     */
     public ThreadGrant {
         Objects.requireNonNull(threadName, "threadName");
         Objects.requireNonNull(requested, "requested");
@@ -27,14 +33,21 @@ public record ThreadGrant(String threadName, int osThreadId, ThreadPolicy reques
         refusals = List.copyOf(refusals);
     }
 
-    /** Whether the granted policy and priority are the requested ones. */
+    /**
+     * Whether the OS granted the policy and priority asked for; the affinity is not compared.
+     *
+     * @return true when {@code granted} equals {@code requested}
+     */
     public boolean isPolicyGranted() {
         return requested.equals(granted);
     }
 
     /**
-     * One report line: {@code rt-dispatcher-1 tid=4711: requested SCHED_FIFO/80 cpus=inherit,
-     * granted SCHED_OTHER cpus=0-1 [thread priority SCHED_FIFO/80 refused: EPERM ...]}.
+     * This grant as one report line.
+     *
+     * @return e.g. {@code rt-dispatcher-1 tid=4711: requested SCHED_FIFO/80 cpus=inherit, granted
+     *         SCHED_OTHER cpus=0-1 [thread priority SCHED_FIFO/80 refused: EPERM ...]}; the
+     *         refusals only when there are some
      */
     public String toLine() {
         var line = new StringBuilder(threadName).append(" tid=").append(osThreadId)

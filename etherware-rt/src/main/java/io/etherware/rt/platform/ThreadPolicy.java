@@ -20,6 +20,13 @@ public record ThreadPolicy(SchedulingPolicy policy, int priority) {
     /** SCHED_OTHER, the JVM's ordinary threads. */
     public static final ThreadPolicy NON_REALTIME = new ThreadPolicy(SchedulingPolicy.OTHER, 0);
 
+    /**
+     * Rejects what no OS grants.
+     *
+     * @throws NullPointerException     when {@code policy} is null
+     * @throws IllegalArgumentException when {@code priority} is negative, or not 0 with
+     *                                  {@link SchedulingPolicy#OTHER}
+     */
     public ThreadPolicy {
         Objects.requireNonNull(policy, "policy");
         if (policy == SchedulingPolicy.OTHER && priority != 0) {
@@ -31,16 +38,35 @@ public record ThreadPolicy(SchedulingPolicy policy, int priority) {
         }
     }
 
-    /** SCHED_FIFO at {@code priority}. */
+    /**
+     * SCHED_FIFO at a priority.
+     *
+     * @param priority the static priority, 1..99 on Linux (higher runs first); a value outside
+     *                 that range is refused by the OS when requested, not here
+     * @return the policy
+     * @throws IllegalArgumentException when {@code priority} is negative
+     */
     public static ThreadPolicy fifo(int priority) {
         return new ThreadPolicy(SchedulingPolicy.FIFO, priority);
     }
 
-    /** SCHED_RR at {@code priority}. */
+    /**
+     * SCHED_RR at a priority.
+     *
+     * @param priority the static priority, 1..99 on Linux (higher runs first); a value outside
+     *                 that range is refused by the OS when requested, not here
+     * @return the policy
+     * @throws IllegalArgumentException when {@code priority} is negative
+     */
     public static ThreadPolicy roundRobin(int priority) {
         return new ThreadPolicy(SchedulingPolicy.RR, priority);
     }
 
+    /**
+     * Whether this asks for a real-time policy.
+     *
+     * @return true for SCHED_FIFO and SCHED_RR
+     */
     public boolean isRealtime() {
         return policy.isRealtime();
     }

@@ -40,6 +40,11 @@ public final class AdmissionControl {
         }
     }
 
+    /**
+     * What {@link #declare} does with a stream that would break its dispatcher's bound.
+     *
+     * @return the configured mode
+     */
     public AdmissionMode mode() {
         return mode;
     }
@@ -47,9 +52,12 @@ public final class AdmissionControl {
     /**
      * Declares a stream and checks its dispatcher's schedulability with it.
      *
+     * @param stream the stream; declaring an equal stream again counts it twice
      * @return the dispatcher's load with the stream
      * @throws AdmissionRejectedException in {@link AdmissionMode#REJECT} mode when the dispatcher
      *                                    would exceed its bound; the stream is then not added
+     * @throws IllegalStateException      when the placement rule puts the stream on a dispatcher
+     *                                    the scheduler does not have
      */
     public synchronized DispatcherLoad declare(PeriodicStream stream) {
         Objects.requireNonNull(stream, "stream");
@@ -68,12 +76,22 @@ public final class AdmissionControl {
         return load;
     }
 
-    /** Removes a declared stream (one occurrence); returns whether it was declared. */
+    /**
+     * Removes a declared stream, one occurrence of it.
+     *
+     * @param stream a stream declared before
+     * @return whether it was declared (and is now removed)
+     */
     public synchronized boolean withdraw(PeriodicStream stream) {
         return streamsByDispatcher.get(dispatcherOf(stream)).remove(stream);
     }
 
-    /** Every dispatcher's declared load, in dispatcher order. */
+    /**
+     * Every dispatcher's declared load.
+     *
+     * @return one load per dispatcher, in dispatcher order, including those without streams; a new
+     *         list the caller owns
+     */
     public synchronized List<DispatcherLoad> loads() {
         var loads = new ArrayList<DispatcherLoad>();
         for (int id = 0; id < streamsByDispatcher.size(); id++) {
@@ -82,7 +100,14 @@ public final class AdmissionControl {
         return loads;
     }
 
-    /** The dispatcher the placement rule puts this stream's messages on. */
+    /**
+     * The dispatcher the placement rule puts a stream's messages on, found by placing a probe
+     * message with the stream's target and QoS at time 0.
+     *
+     * @param stream the stream
+     * @return the dispatcher id
+     * @throws IllegalStateException when the rule puts it on a dispatcher the scheduler does not have
+     */
     public int dispatcherOf(PeriodicStream stream) {
         Message probe = new Message(stream.target(), null, 0L, stream.qos(), Empty.INSTANCE, PROBE_ID, null);
         int dispatcherId = placementRule.place(new Job(probe, stream.target().toString(), stream.target(), 0, 0L), 0L)

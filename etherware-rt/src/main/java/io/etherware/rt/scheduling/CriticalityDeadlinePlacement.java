@@ -19,8 +19,11 @@ public final class CriticalityDeadlinePlacement implements JobPlacementRule {
 
     /** The dispatcher of messages without QoS. */
     public static final int NON_REALTIME_DISPATCHER = 0;
+    /** The dispatcher of HIGH messages: SCHED_FIFO {@value ThreadSchedulingRule#HIGH_PRIORITY} in Table II. */
     public static final int HIGH_DISPATCHER = 1;
+    /** The dispatcher of MIDDLE messages: SCHED_FIFO {@value ThreadSchedulingRule#MIDDLE_PRIORITY} in Table II. */
     public static final int MIDDLE_DISPATCHER = 2;
+    /** The dispatcher of LOW messages: SCHED_FIFO {@value ThreadSchedulingRule#LOW_PRIORITY} in Table II. */
     public static final int LOW_DISPATCHER = 3;
 
     @Override

@@ -19,7 +19,11 @@ import io.etherware.core.message.MessageId;
 public record DeadlineMiss(int dispatcherId, String component, MessageId messageId, Criticality criticality,
                            long releaseNs, long startNs, long completionNs, long deadlineNs) {
 
-    /** How late it completed: {@code completionNs - deadlineNs}, always positive. */
+    /**
+     * How late the job completed.
+     *
+     * @return {@code completionNs - deadlineNs}, in nanoseconds, always positive
+     */
     public long latenessNs() {
         return completionNs - deadlineNs;
     }

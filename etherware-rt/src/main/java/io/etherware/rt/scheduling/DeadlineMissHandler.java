@@ -15,5 +15,10 @@ public interface DeadlineMissHandler {
     /** Does nothing; misses are still counted and recorded. */
     DeadlineMissHandler NONE = miss -> { };
 
+    /**
+     * Reacts to one late job, on the dispatcher thread that ran it; must be short and must not block.
+     *
+     * @param miss the late job: its dispatcher, component, message and times
+     */
     void onDeadlineMiss(DeadlineMiss miss);
 }

@@ -11,7 +11,11 @@ package io.etherware.rt.scheduling;
  */
 public record DispatcherLoad(int dispatcherId, QueuePolicy policy, int streams, double utilization, double bound) {
 
-    /** Whether the utilization stays within the bound. */
+    /**
+     * Whether the utilization stays within the bound.
+     *
+     * @return true when {@code utilization <= bound}, allowing for floating-point rounding
+     */
     public boolean isSchedulable() {
         return utilization <= bound + 1e-12;
     }

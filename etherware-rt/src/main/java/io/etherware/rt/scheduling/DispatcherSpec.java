@@ -14,22 +14,44 @@ import java.util.Objects;
  */
 public record DispatcherSpec(ThreadPolicy policy, CpuSet cpus) {
 
+    /**
+     * A dispatcher asking for {@code policy} on {@code cpus}; the priority range is checked by the
+     * {@link ThreadSchedulingRule} it goes into.
+     *
+     * @throws NullPointerException when {@code policy} or {@code cpus} is null
+     */
     public DispatcherSpec {
         Objects.requireNonNull(policy, "policy");
         Objects.requireNonNull(cpus, "cpus");
     }
 
-    /** An ordinary (SCHED_OTHER) dispatcher on any CPU. */
+    /**
+     * An ordinary (SCHED_OTHER) dispatcher on the inherited CPUs.
+     *
+     * @return the spec
+     */
     public static DispatcherSpec nonRealtime() {
         return new DispatcherSpec(ThreadPolicy.NON_REALTIME, CpuSet.inherit());
     }
 
-    /** A SCHED_FIFO dispatcher at {@code priority} on any CPU. */
+    /**
+     * A SCHED_FIFO dispatcher on the inherited CPUs.
+     *
+     * @param priority the real-time priority, 1..99 on Linux (higher runs first)
+     * @return the spec
+     * @throws IllegalArgumentException when {@code priority} is negative; the rest of the range is
+     *                                  checked by the {@link ThreadSchedulingRule}
+     */
     public static DispatcherSpec fifo(int priority) {
         return new DispatcherSpec(ThreadPolicy.fifo(priority), CpuSet.inherit());
     }
 
-    /** This dispatcher on {@code newCpus}. */
+    /**
+     * This dispatcher's policy on other CPUs.
+     *
+     * @param newCpus the CPUs, or {@link CpuSet#inherit()}
+     * @return a new spec; this one is unchanged
+     */
     public DispatcherSpec on(CpuSet newCpus) {
         return new DispatcherSpec(policy, newCpus);
     }

@@ -18,7 +18,13 @@ public final class EdfPlacement implements JobPlacementRule {
         this(1);
     }
 
-    /** Deadline jobs on {@code deadlineDispatcherId} (at least 1: dispatcher 0 takes the others). */
+    /**
+     * Deadline jobs on a given dispatcher.
+     *
+     * @param deadlineDispatcherId the dispatcher of jobs with a deadline, at least 1 (dispatcher 0
+     *                             takes the others)
+     * @throws IllegalArgumentException when {@code deadlineDispatcherId} is below 1
+     */
     public EdfPlacement(int deadlineDispatcherId) {
         if (deadlineDispatcherId < 1) {
             throw new IllegalArgumentException("deadlineDispatcherId=" + deadlineDispatcherId

@@ -15,6 +15,12 @@ public final class FifoPlacement implements JobPlacementRule {
         this(0);
     }
 
+    /**
+     * Everything on one dispatcher.
+     *
+     * @param dispatcherId the dispatcher, at least 0
+     * @throws IllegalArgumentException when {@code dispatcherId} is negative
+     */
     public FifoPlacement(int dispatcherId) {
         if (dispatcherId < 0) {
             throw new IllegalArgumentException("dispatcherId=" + dispatcherId + " must be >= 0");

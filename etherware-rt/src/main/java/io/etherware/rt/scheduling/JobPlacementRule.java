@@ -26,12 +26,25 @@ public interface JobPlacementRule {
      */
     Placement place(Job job, long nowNs);
 
-    /** How many dispatchers this rule needs (its highest dispatcher id + 1); checked against the TSR. */
+    /**
+     * How many dispatchers this rule needs; the scheduler's configuration checks it against the TSR.
+     *
+     * @return the highest dispatcher id this rule places on, plus one
+     */
     int dispatchersRequired();
 
-    /** How the keys this rule gives order dispatcher {@code dispatcherId}'s queue, for admission control. */
+    /**
+     * How the keys this rule gives order one dispatcher's queue, for admission control.
+     *
+     * @param dispatcherId a dispatcher, in [0, {@link #dispatchersRequired()})
+     * @return the queue policy, which picks the utilization bound
+     */
     QueuePolicy queuePolicy(int dispatcherId);
 
-    /** A short name for logs and reports, e.g. {@code criticality-deadline}. */
+    /**
+     * A short name for logs and reports.
+     *
+     * @return e.g. {@code criticality-deadline}
+     */
     String name();
 }

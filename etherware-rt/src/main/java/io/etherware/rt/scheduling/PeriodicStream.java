@@ -15,6 +15,13 @@ import java.util.Objects;
  */
 public record PeriodicStream(Profile target, QoS qos) {
 
+    /**
+     * Checks that admission control can use the stream.
+     *
+     * @throws NullPointerException     when {@code target} or {@code qos} is null
+     * @throws IllegalArgumentException when {@code qos} has no period or no WCET, or its WCET exceeds
+     *                                  its deadline (its period when it has no deadline)
+     */
     public PeriodicStream {
         Objects.requireNonNull(target, "target");
         Objects.requireNonNull(qos, "qos");
@@ -31,12 +38,27 @@ public record PeriodicStream(Profile target, QoS qos) {
         }
     }
 
-    /** A stream with an implicit deadline (= period). */
+    /**
+     * A stream with an implicit deadline (= period).
+     *
+     * @param target      the receiving component
+     * @param criticality the messages' criticality
+     * @param periodNs    the period in nanoseconds, greater than 0
+     * @param wcetNs      the worst-case execution time of one message's handling in nanoseconds,
+     *                    in 1..{@code periodNs}
+     * @return the stream
+     * @throws IllegalArgumentException when {@code periodNs} or {@code wcetNs} is out of range
+     */
     public static PeriodicStream of(Profile target, Criticality criticality, long periodNs, long wcetNs) {
         return new PeriodicStream(target, QoS.periodic(criticality, periodNs).withWcetNs(wcetNs));
     }
 
-    /** {@code wcet / period}. */
+    /**
+     * The share of one CPU the stream needs.
+     *
+     * @return {@code wcet / period}, greater than 0; at most 1 unless the deadline is longer than
+     *         the period
+     */
     public double utilization() {
         return (double) qos.wcetNs() / qos.periodNs();
     }

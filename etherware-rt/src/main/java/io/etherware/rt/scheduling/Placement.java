@@ -10,6 +10,11 @@ package io.etherware.rt.scheduling;
  */
 public record Placement(int dispatcherId, long key) {
 
+    /**
+     * Checks the dispatcher id; any key is valid.
+     *
+     * @throws IllegalArgumentException when {@code dispatcherId} is negative
+     */
     public Placement {
         if (dispatcherId < 0) {
             throw new IllegalArgumentException("dispatcherId=" + dispatcherId + " must be >= 0");

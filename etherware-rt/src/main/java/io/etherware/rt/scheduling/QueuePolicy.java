@@ -18,7 +18,14 @@ public enum QueuePolicy {
     /** Earlier absolute deadline first: bound 1. */
     EARLIEST_DEADLINE_FIRST;
 
-    /** The utilization up to which {@code streams} periodic streams are schedulable. */
+    /**
+     * The utilization up to which a number of periodic streams on one dispatcher is schedulable.
+     *
+     * @param streams how many streams the dispatcher runs
+     * @return the bound: 1 for {@link #FIFO} and {@link #EARLIEST_DEADLINE_FIRST}; for
+     *         {@link #RATE_MONOTONIC} {@code n (2^(1/n) - 1)}, 1 for at most one stream and falling
+     *         towards ln 2 (about 0.693) as {@code streams} grows
+     */
     public double utilizationBound(int streams) {
         if (this != RATE_MONOTONIC || streams <= 1) {
             return 1.0;

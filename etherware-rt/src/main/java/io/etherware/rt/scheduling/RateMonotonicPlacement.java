@@ -30,6 +30,11 @@ public final class RateMonotonicPlacement implements JobPlacementRule {
      * Periods up to {@code periodUpperBoundsNs[0]} on dispatcher 1, up to {@code [1]} on dispatcher
      * 2, and so on; longer periods on the dispatcher after the last bound. Bounds must be positive
      * and strictly ascending.
+     *
+     * @param periodUpperBoundsNs the bands' inclusive upper period bounds in nanoseconds, positive
+     *                            and strictly ascending; none is the same as the default placement
+     * @return the placement; it needs {@code periodUpperBoundsNs.length + 2} dispatchers
+     * @throws IllegalArgumentException when a bound is not positive or the bounds do not ascend
      */
     public static RateMonotonicPlacement banded(long... periodUpperBoundsNs) {
         long[] bounds = periodUpperBoundsNs.clone();

@@ -73,6 +73,13 @@ public final class RealtimeScheduler implements Scheduler {
     private CpuLatencyHold cpuLatency = CpuLatencyHold.none();
     private CpuPartition partition;
 
+    /**
+     * A scheduler that is not started yet: no thread runs and nothing is asked of the OS until
+     * {@link #start}. Its {@link #stats()} and {@link #admission()} can be used already.
+     *
+     * @param config the validated configuration
+     * @throws NullPointerException when {@code config} is null
+     */
     public RealtimeScheduler(RealtimeSchedulerConfig config) {
         this.config = Objects.requireNonNull(config, "config");
         ThreadSchedulingRule tsr = config.threadSchedulingRule();
@@ -84,16 +91,30 @@ public final class RealtimeScheduler implements Scheduler {
         this.urgency = urgencyOf(tsr);
     }
 
-    /** A scheduler with {@link RealtimeSchedulerConfig#defaults()}: Table II and Algorithm 1. */
+    /**
+     * A scheduler with {@link RealtimeSchedulerConfig#defaults()}: Table II and Algorithm 1.
+     *
+     * @return a new scheduler, not started
+     */
     public static RealtimeScheduler withDefaults() {
         return new RealtimeScheduler(RealtimeSchedulerConfig.defaults());
     }
 
+    /**
+     * The configured name, also the prefix of the dispatcher threads' names.
+     *
+     * @return e.g. {@code rt}
+     */
     @Override
     public String name() {
         return config.name();
     }
 
+    /**
+     * The configuration this scheduler was built with.
+     *
+     * @return the configuration
+     */
     public RealtimeSchedulerConfig config() {
         return config;
     }
@@ -101,7 +122,15 @@ public final class RealtimeScheduler implements Scheduler {
     /**
      * Locks memory if configured, starts the dispatcher threads, waits until each has asked the OS
      * for its priority and CPUs, warns once per kind of refusal (quoting the most demanding
-     * dispatcher), and logs the {@link PlatformReport}, one line per dispatcher.
+     * dispatcher), and logs the {@link PlatformReport}, one line per dispatcher. Refusals of the
+     * OS never throw. A start that throws leaves no dispatcher running and nothing held.
+     *
+     * @param runner the kernel's delivery callback, called on the dispatcher threads
+     * @param clock  the node's clock; dispatchers read its monotonic time
+     * @throws IllegalStateException    when the scheduler was already started or shut down, a
+     *                                  dispatcher did not start within 10 s, the calling thread was
+     *                                  interrupted meanwhile, or another CPU partition is open
+     * @throws IllegalArgumentException when the configured real-time CPUs cannot be partitioned
      */
     @Override
     public void start(JobRunner runner, NodeClock clock) {
@@ -189,8 +218,13 @@ public final class RealtimeScheduler implements Scheduler {
 
     /**
      * Places the job (unless it already has a placement: a parked job coming back keeps its own)
-     * and queues it on its dispatcher. Lock-free; wakes the dispatcher only if it is idle.
+     * and queues it on its dispatcher. Lock-free; wakes the dispatcher only if it is idle. A
+     * placement rule that throws or names a dispatcher that does not exist is logged once, and
+     * the job runs on dispatcher 0 in arrival order.
      *
+     * @param job the job; callable from any thread, including dispatcher threads
+     * @return false when the scheduler is shutting down or shut down and did not take the job (a job
+     *         that holds its component's reservation is still taken while draining); true otherwise
      * @throws IllegalStateException before {@link #start}
      */
     @Override
@@ -236,7 +270,11 @@ public final class RealtimeScheduler implements Scheduler {
         }
     }
 
-    /** Higher-priority dispatcher first (by the TSR), then smaller key, then earlier arrival. */
+    /**
+     * Higher-priority dispatcher first (by the TSR), then smaller key, then earlier arrival.
+     *
+     * @return the order, most urgent first; the same allocation-free comparator on every call
+     */
     @Override
     public Comparator<Job> urgency() {
         return urgency;
@@ -265,7 +303,14 @@ public final class RealtimeScheduler implements Scheduler {
     /**
      * Stops taking new jobs (jobs that already hold their component's reservation are still
      * taken), lets the dispatchers run what is queued until nothing is queued or running, for at
-     * most {@code timeoutNs}, then stops them (interrupting a dispatcher still inside a job).
+     * most {@code timeoutNs}, then stops them (interrupting a dispatcher still inside a job), and
+     * releases the CPU latency request and the CPU partition. Blocks the calling thread for up to
+     * {@code timeoutNs}, plus a few hundred milliseconds when a dispatcher is stuck inside a job;
+     * call it from a thread other than the dispatchers.
+     *
+     * @param timeoutNs how long the dispatchers may drain, in nanoseconds; a negative value is 0
+     * @return the jobs that were queued but never run, so the kernel can count them as discarded;
+     *         empty on a second call or when never started
      */
     @Override
     public List<Job> shutdown(long timeoutNs) {
@@ -360,17 +405,29 @@ public final class RealtimeScheduler implements Scheduler {
         return true;
     }
 
-    /** Time accounting, live. Available before start (all zero). */
+    /**
+     * Time accounting, live. Available before start (all zero).
+     *
+     * @return the same thread-safe view on every call
+     */
     public SchedulerStats stats() {
         return stats;
     }
 
-    /** Admission control for declared periodic streams. */
+    /**
+     * Admission control for declared periodic streams, usable before and after start.
+     *
+     * @return the same thread-safe instance on every call
+     */
     public AdmissionControl admission() {
         return admission;
     }
 
-    /** What each dispatcher asked of the OS and got; empty before {@link #start}. */
+    /**
+     * What each dispatcher asked of the OS and got.
+     *
+     * @return the report of the last successful start; empty before {@link #start}
+     */
     public PlatformReport platformReport() {
         return platformReport;
     }

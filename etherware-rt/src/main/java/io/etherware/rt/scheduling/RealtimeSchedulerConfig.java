@@ -46,6 +46,14 @@ public record RealtimeSchedulerConfig(String name, ThreadSchedulingRule threadSc
 
     private static final Pattern NAME = Pattern.compile("[A-Za-z0-9_.-]{1,32}");
 
+    /**
+     * Validates the configuration.
+     *
+     * @throws NullPointerException     when a component other than a {@code boolean} is null
+     * @throws IllegalArgumentException when {@code name} is not 1..32 of {@code [A-Za-z0-9_.-]}, or
+     *                                  {@code placementRule} needs more dispatchers than
+     *                                  {@code threadSchedulingRule} has
+     */
     public RealtimeSchedulerConfig {
         Objects.requireNonNull(name, "name");
         Objects.requireNonNull(threadSchedulingRule, "threadSchedulingRule");
@@ -64,16 +72,29 @@ public record RealtimeSchedulerConfig(String name, ThreadSchedulingRule threadSc
         }
     }
 
-    /** The defaults listed above. */
+    /**
+     * The defaults listed above.
+     *
+     * @return a configuration with every default
+     */
     public static RealtimeSchedulerConfig defaults() {
         return builder().build();
     }
 
+    /**
+     * A builder starting from the defaults listed above.
+     *
+     * @return a new builder
+     */
     public static Builder builder() {
         return new Builder();
     }
 
-    /** A builder starting from this configuration. */
+    /**
+     * A builder starting from this configuration, to change a few fields.
+     *
+     * @return a new builder holding every field of this configuration
+     */
     public Builder toBuilder() {
         return new Builder().name(name).threadSchedulingRule(threadSchedulingRule).placementRule(placementRule)
                 .admissionMode(admissionMode).lockMemory(lockMemory).priorityInheritance(priorityInheritance)
@@ -95,42 +116,95 @@ public record RealtimeSchedulerConfig(String name, ThreadSchedulingRule threadSc
         private Builder() {
         }
 
+        /**
+         * Sets the name; default {@code rt}.
+         *
+         * @param newName 1..32 of {@code [A-Za-z0-9_.-]}: the prefix of the dispatcher threads'
+         *                names and the scheduler's {@code name()}
+         * @return this builder
+         */
         public Builder name(String newName) {
             this.name = newName;
             return this;
         }
 
+        /**
+         * Sets the dispatchers and their OS priorities; default {@link ThreadSchedulingRule#tableII()}.
+         *
+         * @param rule the rule; it needs at least as many dispatchers as the placement rule uses
+         * @return this builder
+         */
         public Builder threadSchedulingRule(ThreadSchedulingRule rule) {
             this.threadSchedulingRule = rule;
             return this;
         }
 
+        /**
+         * Sets the scheduling policy; default {@link CriticalityDeadlinePlacement}.
+         *
+         * @param rule the rule; it is called concurrently on submitting threads
+         * @return this builder
+         */
         public Builder placementRule(JobPlacementRule rule) {
             this.placementRule = rule;
             return this;
         }
 
+        /**
+         * Sets what admission control does with a stream that breaks a bound; default
+         * {@link AdmissionMode#WARN}.
+         *
+         * @param mode the mode
+         * @return this builder
+         */
         public Builder admissionMode(AdmissionMode mode) {
             this.admissionMode = mode;
             return this;
         }
 
+        /**
+         * Sets whether the scheduler locks the process's memory at start; default false.
+         *
+         * @param lock true for {@code mlockall(MCL_CURRENT|MCL_FUTURE)} at start (see
+         *             {@link io.etherware.rt.platform.Platform#lockMemory()} for sizing the JVM)
+         * @return this builder
+         */
         public Builder lockMemory(boolean lock) {
             this.lockMemory = lock;
             return this;
         }
 
+        /**
+         * Sets priority inheritance; default true.
+         *
+         * @param inherit true to raise the dispatcher running a component to the priority of a job
+         *                waiting for that component
+         * @return this builder
+         */
         public Builder priorityInheritance(boolean inherit) {
             this.priorityInheritance = inherit;
             return this;
         }
 
+        /**
+         * Sets the deadline-miss handler; default {@link DeadlineMissHandler#NONE}.
+         *
+         * @param handler called on the dispatcher thread that ran a late job; must not block
+         * @return this builder
+         */
         public Builder deadlineMissHandler(DeadlineMissHandler handler) {
             this.deadlineMissHandler = handler;
             return this;
         }
 
-        /** Whether to hold the CPUs out of deep idle states while a real-time dispatcher runs. */
+        /**
+         * Whether to hold the CPUs out of deep idle states while a real-time dispatcher runs;
+         * default true.
+         *
+         * @param hold true to hold {@code /dev/cpu_dma_latency} at 0 while the scheduler runs, when it
+         *             has a real-time dispatcher
+         * @return this builder
+         */
         public Builder holdCpuLatency(boolean hold) {
             this.holdCpuLatency = hold;
             return this;
@@ -140,12 +214,23 @@ public record RealtimeSchedulerConfig(String name, ThreadSchedulingRule threadSc
          * Partitions the JVM's CPUs at start: the real-time dispatchers (and every thread that later
          * asks the platform for a real-time policy on inherited CPUs: Notifier, network threads) on
          * {@code cpus}, every other thread on the rest. {@link CpuSet#inherit()}: no partition.
+         *
+         * @param cpus the real-time CPUs, or {@link CpuSet#inherit()} (the default) for no partition
+         * @return this builder
          */
         public Builder realtimeCpus(CpuSet cpus) {
             this.realtimeCpus = cpus;
             return this;
         }
 
+        /**
+         * Builds and validates the configuration.
+         *
+         * @return the configuration
+         * @throws NullPointerException     when an object field was set to null
+         * @throws IllegalArgumentException when the name is malformed or the placement rule needs
+         *                                  more dispatchers than the thread scheduling rule has
+         */
         public RealtimeSchedulerConfig build() {
             return new RealtimeSchedulerConfig(name, threadSchedulingRule, placementRule, admissionMode, lockMemory,
                     priorityInheritance, deadlineMissHandler, holdCpuLatency, realtimeCpus);

@@ -28,7 +28,11 @@ public final class SchedulerStats {
         this.components = components;
     }
 
-    /** Every dispatcher's snapshot, in dispatcher order. */
+    /**
+     * Every dispatcher's snapshot.
+     *
+     * @return one snapshot per dispatcher, in dispatcher order; a new list the caller owns
+     */
     public List<DispatcherStats> dispatchers() {
         var snapshots = new ArrayList<DispatcherStats>(dispatchers.size());
         for (int id = 0; id < dispatchers.size(); id++) {
@@ -37,25 +41,44 @@ public final class SchedulerStats {
         return snapshots;
     }
 
-    /** One dispatcher's snapshot. */
+    /**
+     * One dispatcher's snapshot.
+     *
+     * @param dispatcherId the dispatcher, 0..n-1 of the Thread Scheduling Rule
+     * @return the snapshot, with histograms the caller owns
+     * @throws IndexOutOfBoundsException when there is no such dispatcher
+     */
     public DispatcherStats dispatcher(int dispatcherId) {
         return dispatchers.get(dispatcherId).snapshot(dispatcherId);
     }
 
-    /** Every component that ran at least one job, by name. */
+    /**
+     * Every component that ran at least one job.
+     *
+     * @return the snapshots by component profile text, sorted by it; a new map the caller owns
+     */
     public Map<String, ComponentStats> components() {
         var snapshots = new TreeMap<String, ComponentStats>();
         components.forEach((name, recorder) -> snapshots.put(name, recorder.snapshot(name)));
         return snapshots;
     }
 
-    /** One component's snapshot, if it ran any job. */
+    /**
+     * One component's snapshot.
+     *
+     * @param component the component's profile text ({@code Job.targetName()})
+     * @return the snapshot; empty when the component has not run a job
+     */
     public Optional<ComponentStats> component(String component) {
         ComponentRecorder recorder = components.get(component);
         return recorder == null ? Optional.empty() : Optional.of(recorder.snapshot(component));
     }
 
-    /** Deadline misses over all dispatchers. */
+    /**
+     * Deadline misses over all dispatchers, without taking a snapshot.
+     *
+     * @return jobs that completed after their deadline since start
+     */
     public long deadlineMisses() {
         long misses = 0;
         for (DispatcherRecorder recorder : dispatchers) {
@@ -64,7 +87,11 @@ public final class SchedulerStats {
         return misses;
     }
 
-    /** Jobs run over all dispatchers. */
+    /**
+     * Jobs run over all dispatchers, without taking a snapshot.
+     *
+     * @return jobs run to completion since start
+     */
     public long jobsRun() {
         long run = 0;
         for (DispatcherRecorder recorder : dispatchers) {

@@ -47,12 +47,20 @@ public record ControlCycle(
                 Double.NaN, Double.NaN, -1L, Double.NaN, gainVersion);
     }
 
-    /** How late the controller started after the release: dispatch latency plus queueing. */
+    /**
+     * How late the controller started after the release: dispatch latency plus queueing.
+     *
+     * @return {@code startNs - releaseNs}, in nanoseconds
+     */
     public long startLatenessNs() {
         return startNs - releaseNs;
     }
 
-    /** From the release to the torque command: the cycle's response time on the controller's side. */
+    /**
+     * From the release to the torque command: the cycle's response time on the controller's side.
+     *
+     * @return {@code readoutNs - releaseNs}, in nanoseconds
+     */
     public long responseNs() {
         return readoutNs - releaseNs;
     }

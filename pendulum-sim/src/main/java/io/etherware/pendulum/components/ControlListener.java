@@ -13,6 +13,11 @@ public interface ControlListener {
     /** A listener that does nothing. */
     ControlListener NONE = cycle -> { };
 
-    /** One cycle ended. */
+    /**
+     * One cycle ended, commanded or missed. Called on the controller's dispatcher thread; must not
+     * block.
+     *
+     * @param cycle what the controller measured and commanded in the cycle
+     */
     void onCycle(ControlCycle cycle);
 }

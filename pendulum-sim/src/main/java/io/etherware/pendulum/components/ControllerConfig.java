@@ -32,7 +32,14 @@ public record ControllerConfig(
      */
     public static final long DEFAULT_REPLY_TIMEOUT_NS = 10_000_000L;
 
-    /** Validates every field. */
+    /**
+     * Validates every field.
+     *
+     * @throws NullPointerException     when {@code dspProxy} is null
+     * @throws IllegalArgumentException when {@code replyTimeoutNs} is not positive,
+     *     {@code theta1ReferenceRad} not finite, {@code maxTorqueNm} not finite and positive, or
+     *     {@code filterTimeConstantNs} negative
+     */
     public ControllerConfig {
         Objects.requireNonNull(dspProxy, "dspProxy=null: use DspProxy.DEFAULT_PROFILE or the proxy's profile");
         if (replyTimeoutNs <= 0) {
@@ -54,23 +61,44 @@ public record ControllerConfig(
     /**
      * The proxy at {@link DspProxy#DEFAULT_PROFILE}, a 10 ms reply timeout, θ1r = 0, the board's
      * default torque range (0.5 N·m) and the estimator's default filter (5 ms).
+     *
+     * @return the default settings
      */
     public static ControllerConfig defaults() {
         return new ControllerConfig(DspProxy.DEFAULT_PROFILE, DEFAULT_REPLY_TIMEOUT_NS, 0.0,
                 DspBoardConfig.DEFAULT_MAX_TORQUE_NM, VelocityEstimator.DEFAULT_FILTER_TIME_CONSTANT_NS);
     }
 
-    /** A copy talking to another proxy. */
+    /**
+     * A copy talking to another proxy.
+     *
+     * @param profile the proxy's exact profile or a query that matches it
+     * @return the copy
+     * @throws NullPointerException when {@code profile} is null
+     */
     public ControllerConfig withDspProxy(Profile profile) {
         return new ControllerConfig(profile, replyTimeoutNs, theta1ReferenceRad, maxTorqueNm, filterTimeConstantNs);
     }
 
-    /** A copy with another reply timeout. */
+    /**
+     * A copy with another reply timeout.
+     *
+     * @param nanos how long a cycle waits for its reading, in nanoseconds, greater than 0 and below
+     *     the Tick period
+     * @return the copy
+     * @throws IllegalArgumentException when {@code nanos} is not positive
+     */
     public ControllerConfig withReplyTimeoutNs(long nanos) {
         return new ControllerConfig(dspProxy, nanos, theta1ReferenceRad, maxTorqueNm, filterTimeConstantNs);
     }
 
-    /** A copy with another arm set point. */
+    /**
+     * A copy with another arm set point.
+     *
+     * @param radians θ1r, in rad, finite
+     * @return the copy
+     * @throws IllegalArgumentException when {@code radians} is not finite
+     */
     public ControllerConfig withTheta1ReferenceRad(double radians) {
         return new ControllerConfig(dspProxy, replyTimeoutNs, radians, maxTorqueNm, filterTimeConstantNs);
     }

@@ -40,22 +40,39 @@ public record ControllerState(
     /** The layout version of this record (see {@link ComponentState#schemaVersion()}). */
     public static final int SCHEMA_VERSION = 1;
 
-    /** Rejects a missing control memory. */
+    /**
+     * Rejects a missing control memory.
+     *
+     * @throws NullPointerException when {@code control} is null
+     */
     public ControllerState {
         Objects.requireNonNull(control, "control");
     }
 
+    /**
+     * The layout version of this record, for an upgraded controller's restore.
+     *
+     * @return {@value #SCHEMA_VERSION}
+     */
     @Override
     public int schemaVersion() {
         return SCHEMA_VERSION;
     }
 
-    /** Torque commands sent: one per control update. */
+    /**
+     * Torque commands sent: one per control update.
+     *
+     * @return the control memory's update count
+     */
     public long commands() {
         return control.cycles();
     }
 
-    /** The version of the gain set in use. */
+    /**
+     * The version of the gain set in use.
+     *
+     * @return the gain set's version, e.g. 1 for V1-soft
+     */
     public int gainVersion() {
         return control.gains().version();
     }

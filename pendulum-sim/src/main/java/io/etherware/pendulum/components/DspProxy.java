@@ -55,17 +55,40 @@ public final class DspProxy implements Component {
     private long unexpectedMessages;
     private double lastTorqueNm;
 
-    /** A proxy serving the board behind {@code client}. */
+    /**
+     * A proxy serving the board behind a client.
+     *
+     * @param client the board's client; the proxy does not close its link
+     * @throws NullPointerException when {@code client} is null
+     */
     public DspProxy(DspClient client) {
         this.client = Objects.requireNonNull(client, "client");
     }
 
-    /** A factory for {@code EtherwareNode.add}: every instance (restarts too) uses {@code client}. */
+    /**
+     * A factory for {@code EtherwareNode.add}: every instance (restarts too) uses {@code client}.
+     *
+     * @param client the board's client, shared by the successive instances
+     * @return the factory
+     * @throws NullPointerException when {@code client} is null
+     */
     public static Supplier<DspProxy> factory(DspClient client) {
         Objects.requireNonNull(client, "client");
         return () -> new DspProxy(client);
     }
 
+    /**
+     * Serves one message with one synchronous serial exchange, on the proxy's dispatcher; blocks
+     * for the exchange (see the type's timing note). Replies only to a message with a sender.
+     * Serial failures are counted and never thrown: a failed reading is answered with a
+     * {@link DspFault}, a failed status read is reported inside the {@link DspProxyStatus}, a lost
+     * {@link SetTorque} is only counted.
+     *
+     * @param message a {@link ReadAngles}, {@link SetTorque} or {@link StatusRequest}; any other
+     *                contents are counted and a request for them is answered with a
+     *                {@link DspFault} of kind {@code UNSUPPORTED}
+     * @param context the proxy's context, to reply with
+     */
     @Override
     public void onMessage(Message message, ComponentContext context) {
         switch (message.contents()) {
@@ -155,17 +178,32 @@ public final class DspProxy implements Component {
         }
     }
 
-    /** The counters now. Call on the proxy's dispatcher (or read them from a {@link StatusRequest}). */
+    /**
+     * The counters now. Call on the proxy's dispatcher (or read them from a {@link StatusRequest}).
+     *
+     * @return a new snapshot of the counters
+     */
     public DspProxyCounters counters() {
         return new DspProxyCounters(angleReads, torqueCommands, statusReads, timeouts, linkErrors,
                 saturatedCommands, watchdogRecoveries, unexpectedMessages, lastTorqueNm);
     }
 
+    /**
+     * The proxy's state: its counters, so a restart keeps counting.
+     *
+     * @return the {@link DspProxyCounters} now
+     */
     @Override
     public ComponentState snapshot() {
         return counters();
     }
 
+    /**
+     * Continues counting from a previous instance's counters.
+     *
+     * @param state a {@link DspProxyCounters}
+     * @throws IllegalArgumentException when {@code state} is not a {@link DspProxyCounters}
+     */
     @Override
     public void restore(ComponentState state) {
         if (!(state instanceof DspProxyCounters counters)) {

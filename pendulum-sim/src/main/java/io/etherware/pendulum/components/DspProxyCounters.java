@@ -31,7 +31,11 @@ public record DspProxyCounters(
     /** Nothing done yet. */
     public static final DspProxyCounters ZERO = new DspProxyCounters(0, 0, 0, 0, 0, 0, 0, 0, 0.0);
 
-    /** Serial exchanges that failed, timeouts and link errors. */
+    /**
+     * Serial exchanges that failed, timeouts and link errors.
+     *
+     * @return {@code timeouts + linkErrors}
+     */
     public long serialFailures() {
         return timeouts + linkErrors;
     }

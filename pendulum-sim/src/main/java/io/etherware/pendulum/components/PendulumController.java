@@ -89,6 +89,13 @@ public final class PendulumController implements Component {
     /**
      * A factory for {@code EtherwareNode.add} and {@code swap}: every instance computes with
      * {@code gains}; restarts and upgrades hand it the previous instance's state.
+     *
+     * @param config   where the proxy is, the reply timeout, θ1r and limits
+     * @param gains    the gain set every instance computes with (V1 or V2)
+     * @param listener told about every cycle, on the controller's dispatcher;
+     *                 {@link ControlListener#NONE} for none
+     * @return the factory
+     * @throws NullPointerException when an argument is null
      */
     public static Supplier<PendulumController> factory(ControllerConfig config, GainSet gains,
             ControlListener listener) {
@@ -98,11 +105,24 @@ public final class PendulumController implements Component {
         return () -> new PendulumController(config, gains, listener);
     }
 
+    /**
+     * Keeps the context for the cycles' requests and commands.
+     *
+     * @param componentContext this controller's context
+     */
     @Override
     public void onStart(ComponentContext componentContext) {
         this.context = componentContext;
     }
 
+    /**
+     * Starts a cycle on a {@link Tick}: abandons a cycle still waiting, then requests the angles
+     * with the Tick's QoS. Does not block; the torque is computed when the reading comes. Other
+     * messages are counted and logged, the first at WARN.
+     *
+     * @param message          a message; only a {@link Tick} starts a cycle
+     * @param componentContext this controller's context
+     */
     @Override
     public void onMessage(Message message, ComponentContext componentContext) {
         if (message.contents() instanceof Tick tick) {
@@ -197,11 +217,20 @@ public final class PendulumController implements Component {
         }
     }
 
+    /**
+     * Stops this instance: a reading that comes afterwards is ignored (the successor counts its
+     * cycle as abandoned).
+     */
     @Override
     public void onStop() {
         stopped = true;
     }
 
+    /**
+     * The loop's state for a restart, an upgrade or a migration.
+     *
+     * @return a new {@link ControllerState}: control memory, counters and the pending cycle
+     */
     @Override
     public ControllerState snapshot() {
         return new ControllerState(control.state(), ticks, missedReplies, lateReplies, abandonedCycles, skippedTicks,
@@ -212,6 +241,7 @@ public final class PendulumController implements Component {
      * Continues from a previous instance's {@link ControllerState}: the estimator's memory, θ1r
      * and the counters carry over; this instance's gain set replaces the state's.
      *
+     * @param state the previous instance's {@link ControllerState}
      * @throws IllegalArgumentException if the state is not a {@link ControllerState} of a known
      *                                  schema version (an upgrade is then rolled back)
      */
@@ -243,17 +273,29 @@ public final class PendulumController implements Component {
         }
     }
 
-    /** The gain set this instance computes with. */
+    /**
+     * The gain set this instance computes with.
+     *
+     * @return the gain set given at construction, whatever a restored state held
+     */
     public GainSet gains() {
         return gains;
     }
 
-    /** This instance's settings. */
+    /**
+     * This instance's settings.
+     *
+     * @return the settings given at construction
+     */
     public ControllerConfig config() {
         return config;
     }
 
-    /** The last cycle this instance completed or missed, or null; readable from any thread. */
+    /**
+     * The last cycle this instance completed or missed; readable from any thread.
+     *
+     * @return the cycle, or null before the first
+     */
     public ControlCycle lastCycle() {
         return lastCycle;
     }

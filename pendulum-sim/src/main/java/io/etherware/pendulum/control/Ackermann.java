@@ -22,6 +22,7 @@ public final class Ackermann {
      * @param a n×n state matrix
      * @param b n×1 input matrix
      * @param poles n poles; complex ones must come in conjugate pairs
+     * @return K, n entries, so that {@code u = −K x}
      * @throws IllegalArgumentException if the counts disagree, the poles are not closed under
      *     conjugation, or (A, B) is not controllable
      */

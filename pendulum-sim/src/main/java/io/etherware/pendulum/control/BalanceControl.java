@@ -55,18 +55,33 @@ public final class BalanceControl {
         return torque;
     }
 
-    /** Switches to another gain set from the next cycle on, keeping the estimator's memory. */
+    /**
+     * Switches to another gain set from the next cycle on, keeping the estimator's memory and the
+     * arm set point.
+     *
+     * @param gains the new gain set
+     */
     public void useGains(GainSet gains) {
         this.law = new StateFeedbackLaw(gains, law.theta1ReferenceRad(), maxTorqueNm);
     }
 
-    /** The current memory. */
+    /**
+     * The current memory, for a controller to carry through an upgrade or a migration.
+     *
+     * @return a new snapshot of the gains, set point, estimator memory and counters
+     */
     public BalanceControlState state() {
         return new BalanceControlState(law.gains(), law.theta1ReferenceRad(), estimator.state(),
                 cycles, saturatedCycles);
     }
 
-    /** Continues from a memory carried over from another instance. */
+    /**
+     * Continues from a memory carried over from another instance; the torque limit stays this
+     * instance's.
+     *
+     * @param memory a memory from {@link #state()}
+     * @throws NullPointerException when {@code memory} is null
+     */
     public void restore(BalanceControlState memory) {
         Objects.requireNonNull(memory, "memory");
         this.law = new StateFeedbackLaw(memory.gains(), memory.theta1ReferenceRad(), maxTorqueNm);
@@ -75,7 +90,11 @@ public final class BalanceControl {
         this.saturatedCycles = memory.saturatedCycles();
     }
 
-    /** The law in use. */
+    /**
+     * The law in use.
+     *
+     * @return the law with the current gains, set point and torque limit
+     */
     public StateFeedbackLaw law() {
         return law;
     }

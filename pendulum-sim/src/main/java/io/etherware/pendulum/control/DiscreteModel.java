@@ -35,12 +35,28 @@ public final class DiscreteModel {
         this.delayNs = delayNs;
     }
 
-    /** ZOH discretization at {@code periodNs}, no input delay. */
+    /**
+     * ZOH discretization at a sample period, no input delay.
+     *
+     * @param model    the continuous-time model
+     * @param periodNs the sample period T, in nanoseconds, greater than 0
+     * @return the discrete model, with Γ1 = 0
+     * @throws IllegalArgumentException when {@code periodNs} is not positive
+     */
     public static DiscreteModel zeroOrderHold(LinearModel model, long periodNs) {
         return zeroOrderHold(model, periodNs, 0L);
     }
 
-    /** ZOH discretization at {@code periodNs} with the input taking effect {@code delayNs} after the sample. */
+    /**
+     * ZOH discretization at a sample period, with the input taking effect some time after the
+     * sample.
+     *
+     * @param model    the continuous-time model
+     * @param periodNs the sample period T, in nanoseconds, greater than 0
+     * @param delayNs  the input delay d, in nanoseconds, within [0, periodNs]
+     * @return the discrete model
+     * @throws IllegalArgumentException when {@code periodNs} or {@code delayNs} is out of range
+     */
     public static DiscreteModel zeroOrderHold(LinearModel model, long periodNs, long delayNs) {
         if (periodNs <= 0) {
             throw new IllegalArgumentException("periodNs=" + periodNs + ": must be > 0");
@@ -80,32 +96,56 @@ public final class DiscreteModel {
         return new double[][][] {transition, input};
     }
 
-    /** Φ = e^{AT}. */
+    /**
+     * The state transition matrix.
+     *
+     * @return a copy of Φ = e^{AT}, n×n
+     */
     public double[][] phi() {
         return Matrices.copy(phi);
     }
 
-    /** Γ0, the input matrix of the current sample's command. */
+    /**
+     * Γ0, the input matrix of the current sample's command.
+     *
+     * @return a copy of Γ0, n×1
+     */
     public double[][] gammaNow() {
         return Matrices.copy(gammaNow);
     }
 
-    /** Γ1, the input matrix of the previous command (zero without delay). */
+    /**
+     * Γ1, the input matrix of the previous command.
+     *
+     * @return a copy of Γ1, n×1; zero without delay
+     */
     public double[][] gammaPrevious() {
         return Matrices.copy(gammaPrevious);
     }
 
-    /** Γ = Γ0 + Γ1, the input matrix the plain ZOH model would have. */
+    /**
+     * The input matrix the plain ZOH model would have.
+     *
+     * @return Γ = Γ0 + Γ1, a new n×1 matrix
+     */
     public double[][] gamma() {
         return Matrices.add(gammaNow, gammaPrevious);
     }
 
-    /** The sample period T. */
+    /**
+     * The sample period T.
+     *
+     * @return the period, in nanoseconds
+     */
     public long periodNs() {
         return periodNs;
     }
 
-    /** The input delay d. */
+    /**
+     * The input delay d.
+     *
+     * @return the delay, in nanoseconds, within [0, {@link #periodNs()}]
+     */
     public long delayNs() {
         return delayNs;
     }

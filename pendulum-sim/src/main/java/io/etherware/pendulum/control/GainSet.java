@@ -50,7 +50,12 @@ public record GainSet(
             new Complex(-5.0, 2.0), new Complex(-5.0, -2.0),
             Complex.real(-10.0), Complex.real(-12.0));
 
-    /** Validates the name and that the gains are finite. */
+    /**
+     * Validates the name and that the gains are finite; keeps an unmodifiable copy of the poles.
+     *
+     * @throws NullPointerException     when {@code name} or {@code polesRadPerS} is null
+     * @throws IllegalArgumentException when a gain is not finite
+     */
     public GainSet {
         Objects.requireNonNull(name, "name");
         polesRadPerS = List.copyOf(polesRadPerS);
@@ -62,24 +67,48 @@ public record GainSet(
         }
     }
 
-    /** A gain placing the poles of {@code A − B K} at {@code polesRadPerS} (Ackermann). */
+    /**
+     * A gain placing the poles of {@code A − B K} at the given poles (Ackermann).
+     *
+     * @param name         a short name, e.g. {@code "V1-soft"}
+     * @param version      the gain version carried in controller state
+     * @param model        the 4-state linear model to design for
+     * @param polesRadPerS 4 continuous-time poles in rad/s; complex ones in conjugate pairs
+     * @return the gain set
+     * @throws IllegalArgumentException when the poles are not 4 or not closed under conjugation,
+     *                                  or the model is not controllable
+     */
     public static GainSet design(String name, int version, LinearModel model,
             List<Complex> polesRadPerS) {
         double[] k = Ackermann.gain(model.a(), model.b(), polesRadPerS);
         return new GainSet(name, version, polesRadPerS, k[0], k[1], k[2], k[3]);
     }
 
-    /** V1 "soft" ({@link #V1_POLES}) for the given pendulum, version 1. */
+    /**
+     * V1 "soft" ({@link #V1_POLES}) for the given pendulum, version 1.
+     *
+     * @param parameters the pendulum to design for
+     * @return the gain set, named {@code V1-soft}
+     */
     public static GainSet v1Soft(PendulumParameters parameters) {
         return design("V1-soft", 1, LinearModel.linearize(parameters, 0.0), V1_POLES);
     }
 
-    /** V2 "tight" ({@link #V2_POLES}) for the given pendulum, version 2. */
+    /**
+     * V2 "tight" ({@link #V2_POLES}) for the given pendulum, version 2.
+     *
+     * @param parameters the pendulum to design for
+     * @return the gain set, named {@code V2-tight}
+     */
     public static GainSet v2Tight(PendulumParameters parameters) {
         return design("V2-tight", 2, LinearModel.linearize(parameters, 0.0), V2_POLES);
     }
 
-    /** K as an array {@code [k_θ1, k_θ̇1, k_θ2, k_θ̇2]}. */
+    /**
+     * K as an array; allocates.
+     *
+     * @return a new array {@code [k_θ1, k_θ̇1, k_θ2, k_θ̇2]}, in N·m/rad and N·m·s/rad
+     */
     public double[] gains() {
         return new double[] {kTheta1NmPerRad, kTheta1RateNmsPerRad, kTheta2NmPerRad,
                 kTheta2RateNmsPerRad};

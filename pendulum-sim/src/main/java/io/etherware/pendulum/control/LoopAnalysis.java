@@ -25,7 +25,15 @@ public final class LoopAnalysis {
 
     private LoopAnalysis() {}
 
-    /** Eigenvalues of {@code Φ − Γ K} at {@code periodNs}, by decreasing modulus. */
+    /**
+     * Eigenvalues of {@code Φ − Γ K} at a control period, by decreasing modulus.
+     *
+     * @param model    the continuous-time linear model
+     * @param gains    the gain K
+     * @param periodNs the control period T, in nanoseconds, greater than 0
+     * @return the 4 discrete-time closed-loop eigenvalues
+     * @throws IllegalArgumentException when {@code periodNs} is not positive
+     */
     public static List<Complex> ideal(LinearModel model, GainSet gains, long periodNs) {
         DiscreteModel discrete = DiscreteModel.zeroOrderHold(model, periodNs);
         double[][] k = {gains.gains()};
@@ -38,8 +46,13 @@ public final class LoopAnalysis {
      * Eigenvalues of the loop with the velocity estimator and an input delay, by decreasing
      * modulus.
      *
+     * @param model the continuous-time linear model
+     * @param gains the gain K
+     * @param periodNs the control period T, in nanoseconds, greater than 0
      * @param delayNs from encoder sampling to the torque taking effect, within [0, periodNs]
      * @param filterTimeConstantNs the estimator's first-order filter constant (0: raw differences)
+     * @return the 9 discrete-time closed-loop eigenvalues
+     * @throws IllegalArgumentException when {@code periodNs} or {@code delayNs} is out of range
      */
     public static List<Complex> asImplemented(LinearModel model, GainSet gains, long periodNs,
             long delayNs, long filterTimeConstantNs) {
@@ -82,7 +95,13 @@ public final class LoopAnalysis {
         return Eigenvalues.of(closed);
     }
 
-    /** The largest modulus. */
+    /**
+     * The largest modulus: below 1 for a stable loop.
+     *
+     * @param eigenvalues the loop's eigenvalues, at least one
+     * @return the spectral radius
+     * @throws java.util.NoSuchElementException when {@code eigenvalues} is empty
+     */
     public static double spectralRadius(List<Complex> eigenvalues) {
         return eigenvalues.stream().mapToDouble(Complex::abs).max().orElseThrow();
     }
@@ -90,6 +109,10 @@ public final class LoopAnalysis {
     /**
      * The slowest decay rate of the loop, {@code −ln(ρ) / T} for spectral radius ρ: the margin
      * inside the unit circle expressed as a continuous-time rate, comparable across periods.
+     *
+     * @param eigenvalues the loop's discrete-time eigenvalues, at least one
+     * @param periodNs    the control period T they were computed for, in nanoseconds
+     * @return the rate in 1/s; negative for an unstable loop
      */
     public static double slowestDecayRatePerS(List<Complex> eigenvalues, long periodNs) {
         return -Math.log(spectralRadius(eigenvalues)) / (periodNs * 1e-9);
@@ -99,6 +122,10 @@ public final class LoopAnalysis {
      * Throws unless every eigenvalue lies strictly inside the circle of radius
      * {@code e^{−σ T}}, i.e. every mode decays at least at {@code minDecayRatePerS} = σ.
      *
+     * @param eigenvalues      the loop's discrete-time eigenvalues, at least one
+     * @param periodNs         the control period T they were computed for, in nanoseconds
+     * @param minDecayRatePerS σ, in 1/s; 0 asks for plain stability
+     * @param what             names the loop in the exception's message
      * @throws IllegalStateException naming the offending radius and eigenvalues
      */
     public static void requireStable(List<Complex> eigenvalues, long periodNs,

@@ -34,8 +34,10 @@ public final class VelocityEstimator {
     /**
      * An estimator.
      *
-     * @param filterTimeConstantNs τ of the low-pass filter; 0 uses the raw differences
-     * @param maxGapNs the longest interval between samples that is still differenced
+     * @param filterTimeConstantNs τ of the low-pass filter, 0 or more; 0 uses the raw differences
+     * @param maxGapNs the longest interval between samples that is still differenced, at least
+     *                 1000 (1 µs)
+     * @throws IllegalArgumentException when a value is out of range
      */
     public VelocityEstimator(long filterTimeConstantNs, long maxGapNs) {
         if (filterTimeConstantNs < 0) {
@@ -49,7 +51,13 @@ public final class VelocityEstimator {
         this.maxGapUs = maxGapNs / 1_000L;
     }
 
-    /** The filter weight α = 1 − e^{−Δt/τ} for an interval Δt (1 when τ = 0). */
+    /**
+     * The filter weight for an interval.
+     *
+     * @param intervalNs           Δt, in nanoseconds
+     * @param filterTimeConstantNs τ, in nanoseconds; 0 for no filtering
+     * @return α = 1 − e^{−Δt/τ}, in [0, 1]; 1 when τ = 0
+     */
     public static double smoothing(long intervalNs, long filterTimeConstantNs) {
         if (filterTimeConstantNs == 0) {
             return 1.0;
@@ -59,8 +67,12 @@ public final class VelocityEstimator {
 
     /**
      * Takes one sample and returns the updated memory, whose rates are the current estimate.
+     * Allocates one small record per accepted sample.
      *
+     * @param theta1Rad θ1 as measured by encoder 1
+     * @param theta2Rad θ2 as measured by encoder 2
      * @param dspTimeUs the board's time stamp of the sample, µs, monotonic (already unwrapped)
+     * @return the memory after the sample; the previous one when the time stamp repeats
      */
     public VelocityEstimatorState update(double theta1Rad, double theta2Rad, long dspTimeUs) {
         VelocityEstimatorState last = state;
@@ -91,17 +103,30 @@ public final class VelocityEstimator {
         return state;
     }
 
-    /** The current memory. */
+    /**
+     * The current memory.
+     *
+     * @return the memory after the last sample; {@link VelocityEstimatorState#INITIAL} before any
+     */
     public VelocityEstimatorState state() {
         return state;
     }
 
-    /** Continues from a memory carried over from another instance. */
+    /**
+     * Continues from a memory carried over from another instance.
+     *
+     * @param memory a memory from {@link #state()}
+     * @throws NullPointerException when {@code memory} is null
+     */
     public void restore(VelocityEstimatorState memory) {
         this.state = Objects.requireNonNull(memory, "memory");
     }
 
-    /** τ of the low-pass filter. */
+    /**
+     * τ of the low-pass filter.
+     *
+     * @return τ, in nanoseconds; 0 for raw differences
+     */
     public long filterTimeConstantNs() {
         return filterTimeConstantNs;
     }

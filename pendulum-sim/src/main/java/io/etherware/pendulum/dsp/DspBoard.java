@@ -73,9 +73,14 @@ public final class DspBoard implements AutoCloseable {
     private Thread thread;
 
     /**
-     * A board owning a new plant in {@code initial}.
+     * A board owning a new plant in {@code initial}. It does nothing until started in one of its
+     * two modes.
      *
-     * @param link the board's end of the serial link (not closed by the board)
+     * @param config     the board's settings; its step is also the plant's integration step
+     * @param parameters the pendulum's parameters
+     * @param initial    the pendulum's state at the board's time 0
+     * @param link       the board's end of the serial link (not closed by the board)
+     * @throws NullPointerException when {@code config} or {@code link} is null
      */
     public DspBoard(DspBoardConfig config, PendulumParameters parameters, PendulumState initial,
             SerialLink link) {
@@ -85,7 +90,13 @@ public final class DspBoard implements AutoCloseable {
         this.countsPerRadian = config.countsPerRevolution() / (2.0 * Math.PI);
     }
 
-    /** Lock-step mode: the board runs whenever {@code clock} advances, from its current time. */
+    /**
+     * Lock-step mode: the board runs whenever {@code clock} advances, from its current time. Call
+     * it on the thread that drives the clock.
+     *
+     * @param clock the clock to register with as a participant
+     * @throws IllegalStateException when the board was already started, in either mode
+     */
     public synchronized void attachTo(LockStepClock clock) {
         markStarted(clock.nanoTime());
         clock.register(new LockStepClock.Participant() {
@@ -104,7 +115,9 @@ public final class DspBoard implements AutoCloseable {
     /**
      * Real-time mode: starts a thread that steps the board against {@code clock}, parking between cycles.
      *
+     * @param clock         the physical world's clock, e.g. {@link NodeClock#system()}
      * @param threadFactory makes the stepping thread, e.g. one that raises its priority
+     * @throws IllegalStateException when the board was already started, in either mode
      */
     public void startRealTime(NodeClock clock, ThreadFactory threadFactory) {
         startRealTime(clock, threadFactory, DeadlineSleeper.parking(clock));
@@ -116,7 +129,10 @@ public final class DspBoard implements AutoCloseable {
      * cycle boundary). The sleeper is the board thread's alone; it must return within a cycle or so
      * ({@link #close()} waits for it).
      *
+     * @param clock         the physical world's clock, e.g. {@link NodeClock#system()}
      * @param threadFactory makes the stepping thread, e.g. one that raises its priority
+     * @param sleeper       how the stepping thread sleeps to each cycle boundary on {@code clock}
+     * @throws IllegalStateException when the board was already started, in either mode
      */
     public synchronized void startRealTime(NodeClock clock, ThreadFactory threadFactory, DeadlineSleeper sleeper) {
         Objects.requireNonNull(clock, "clock");
@@ -127,7 +143,12 @@ public final class DspBoard implements AutoCloseable {
         thread.start();
     }
 
-    /** Real-time mode on the system clock, with a daemon thread named {@code dsp-board}. */
+    /**
+     * Real-time mode on the system clock, with a daemon thread named {@code dsp-board}, parking
+     * between cycles.
+     *
+     * @throws IllegalStateException when the board was already started, in either mode
+     */
     public void startRealTime() {
         startRealTime(NodeClock.system(), runnable -> {
             Thread t = new Thread(runnable, "dsp-board");
@@ -267,47 +288,83 @@ public final class DspBoard implements AutoCloseable {
                 config.countsPerRevolution());
     }
 
-    /** The board's flags and counters now (what a STATUS reply would say). */
+    /**
+     * The board's flags and counters now (what a STATUS reply would say).
+     *
+     * @return a new snapshot, time-stamped at {@link #boardTimeNs()}
+     */
     public synchronized BoardStatus status() {
         return statusAt(plant.timeNs());
     }
 
-    /** Ground truth of the simulation, for tests and plots only (see the type's Javadoc). */
+    /**
+     * Ground truth of the simulation, for tests and plots only (see the type's Javadoc).
+     *
+     * @return the plant's state at {@link #boardTimeNs()}
+     */
     public synchronized PendulumState plantState() {
         return plant.state();
     }
 
-    /** The torque the motor applies now. */
+    /**
+     * The torque the motor applies now.
+     *
+     * @return the torque, in N·m: the last command clamped to the range, or 0 after a watchdog trip
+     */
     public synchronized double appliedTorqueNm() {
         return appliedTorqueNm;
     }
 
-    /** The last torque commanded, before clamping. */
+    /**
+     * The last torque commanded, before clamping.
+     *
+     * @return the torque, in N·m; 0 before the first command
+     */
     public synchronized double commandedTorqueNm() {
         return commandedTorqueNm;
     }
 
-    /** Board time up to which the plant has been integrated (the next cycle boundary), ns since start. */
+    /**
+     * Board time up to which the plant has been integrated (the next cycle boundary).
+     *
+     * @return nanoseconds of board time since start
+     */
     public synchronized long boardTimeNs() {
         return plant.timeNs();
     }
 
-    /** Cycles run more than one step behind the clock (real-time mode). */
+    /**
+     * Cycles run more than one step behind the clock (real-time mode).
+     *
+     * @return the count since start; 0 in lock step, where time stops at every cycle boundary
+     */
     public synchronized long lateCycles() {
         return lateCycles;
     }
 
-    /** Replies the link refused to send. */
+    /**
+     * Replies the link refused to send.
+     *
+     * @return the count since start
+     */
     public synchronized long transmitErrors() {
         return transmitErrors;
     }
 
-    /** Total mechanical energy of the plant (ground truth). */
+    /**
+     * Total mechanical energy of the plant (ground truth).
+     *
+     * @return the energy, in joules
+     */
     public synchronized double energyJ() {
         return plant.energyJ();
     }
 
-    /** The board's settings. */
+    /**
+     * The board's settings.
+     *
+     * @return the settings given at construction
+     */
     public DspBoardConfig config() {
         return config;
     }

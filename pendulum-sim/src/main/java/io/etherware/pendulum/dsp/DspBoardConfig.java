@@ -34,7 +34,14 @@ public record DspBoardConfig(
     /** At most 1 ms of busy-waiting. */
     public static final long MAX_SPIN_LIMIT_NS = 1_000_000L;
 
-    /** Validates every field. */
+    /**
+     * Validates every field.
+     *
+     * @throws IllegalArgumentException when {@code stepNs} is outside [10 µs, 10 ms],
+     *     {@code countsPerRevolution} below 4, {@code maxTorqueNm} not finite and positive,
+     *     {@code watchdogTimeoutNs} shorter than a step, or {@code maxSpinNs} outside
+     *     [0, {@value #MAX_SPIN_LIMIT_NS}]
+     */
     public DspBoardConfig {
         if (stepNs < 10_000L || stepNs > 10_000_000L) {
             throw new IllegalArgumentException("stepNs=" + stepNs
@@ -57,28 +64,58 @@ public record DspBoardConfig(
         }
     }
 
-    /** 0.5 ms steps, 4096 counts, 0.5 N·m, 100 ms watchdog, no spinning. */
+    /**
+     * 0.5 ms steps, 4096 counts, 0.5 N·m, 100 ms watchdog, no spinning.
+     *
+     * @return the default settings
+     */
     public static DspBoardConfig defaults() {
         return new DspBoardConfig(PendulumPlant.DEFAULT_STEP_NS, DEFAULT_COUNTS_PER_REVOLUTION,
                 DEFAULT_MAX_TORQUE_NM, DEFAULT_WATCHDOG_TIMEOUT_NS, 0L);
     }
 
-    /** A copy with another step. */
+    /**
+     * A copy with another step.
+     *
+     * @param nanos the board's cycle and plant step, in nanoseconds, within [10 µs, 10 ms] and
+     *     no longer than the watchdog timeout
+     * @return the copy
+     * @throws IllegalArgumentException when {@code nanos} is out of range
+     */
     public DspBoardConfig withStepNs(long nanos) {
         return new DspBoardConfig(nanos, countsPerRevolution, maxTorqueNm, watchdogTimeoutNs, maxSpinNs);
     }
 
-    /** A copy with another watchdog timeout. */
+    /**
+     * A copy with another watchdog timeout.
+     *
+     * @param nanos the timeout, in nanoseconds, at least one step
+     * @return the copy
+     * @throws IllegalArgumentException when {@code nanos} is shorter than a step
+     */
     public DspBoardConfig withWatchdogTimeoutNs(long nanos) {
         return new DspBoardConfig(stepNs, countsPerRevolution, maxTorqueNm, nanos, maxSpinNs);
     }
 
-    /** A copy with another torque range. */
+    /**
+     * A copy with another torque range.
+     *
+     * @param torqueNm the largest torque magnitude the motor applies, in N·m, finite and positive
+     * @return the copy
+     * @throws IllegalArgumentException when {@code torqueNm} is out of range
+     */
     public DspBoardConfig withMaxTorqueNm(double torqueNm) {
         return new DspBoardConfig(stepNs, countsPerRevolution, torqueNm, watchdogTimeoutNs, maxSpinNs);
     }
 
-    /** A copy with another spin bound. */
+    /**
+     * A copy with another spin bound.
+     *
+     * @param nanos the longest busy-wait before a step in real-time mode, in nanoseconds, within
+     *     [0, {@value #MAX_SPIN_LIMIT_NS}]; 0 to only sleep
+     * @return the copy
+     * @throws IllegalArgumentException when {@code nanos} is out of range
+     */
     public DspBoardConfig withMaxSpinNs(long nanos) {
         return new DspBoardConfig(stepNs, countsPerRevolution, maxTorqueNm, watchdogTimeoutNs, nanos);
     }

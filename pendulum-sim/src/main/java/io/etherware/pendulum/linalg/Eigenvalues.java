@@ -23,6 +23,8 @@ public final class Eigenvalues {
      * The eigenvalues of {@code a}, sorted by decreasing modulus then decreasing real part.
      * Complex eigenvalues come in conjugate pairs.
      *
+     * @param a a square, finite matrix; not modified
+     * @return the n eigenvalues, repeated by multiplicity; a new list
      * @throws IllegalArgumentException if {@code a} is not square or not finite
      * @throws ArithmeticException if the QR iteration does not converge
      */
@@ -49,12 +51,27 @@ public final class Eigenvalues {
         return result;
     }
 
-    /** The largest eigenvalue modulus (spectral radius). */
+    /**
+     * The largest eigenvalue modulus (spectral radius): below 1 for a stable discrete-time system.
+     *
+     * @param a a non-empty, square, finite matrix; not modified
+     * @return {@code max |λ|}
+     * @throws IllegalArgumentException if {@code a} is not square or not finite
+     * @throws ArithmeticException if the QR iteration does not converge
+     */
     public static double spectralRadius(double[][] a) {
         return of(a).getFirst().abs();
     }
 
-    /** The largest real part of the eigenvalues (spectral abscissa). */
+    /**
+     * The largest real part of the eigenvalues (spectral abscissa): below 0 for a stable
+     * continuous-time system.
+     *
+     * @param a a non-empty, square, finite matrix; not modified
+     * @return {@code max Re(λ)}
+     * @throws IllegalArgumentException if {@code a} is not square or not finite
+     * @throws ArithmeticException if the QR iteration does not converge
+     */
     public static double spectralAbscissa(double[][] a) {
         return of(a).stream().mapToDouble(Complex::re).max().orElseThrow();
     }

@@ -13,7 +13,12 @@ public final class Matrices {
 
     private Matrices() {}
 
-    /** The n×n identity. */
+    /**
+     * The n×n identity.
+     *
+     * @param n the size, 0 or more
+     * @return a new identity matrix
+     */
     public static double[][] identity(int n) {
         double[][] result = new double[n][n];
         for (int i = 0; i < n; i++) {
@@ -22,7 +27,12 @@ public final class Matrices {
         return result;
     }
 
-    /** A deep copy. */
+    /**
+     * A deep copy.
+     *
+     * @param a a matrix; rows may differ in length
+     * @return a new matrix with copies of the rows
+     */
     public static double[][] copy(double[][] a) {
         double[][] result = new double[a.length][];
         for (int i = 0; i < a.length; i++) {
@@ -31,7 +41,12 @@ public final class Matrices {
         return result;
     }
 
-    /** A column vector (n×1) from its entries. */
+    /**
+     * A column vector (n×1) from its entries.
+     *
+     * @param entries the entries, top to bottom
+     * @return a new n×1 matrix
+     */
     public static double[][] column(double... entries) {
         double[][] result = new double[entries.length][1];
         for (int i = 0; i < entries.length; i++) {
@@ -40,7 +55,14 @@ public final class Matrices {
         return result;
     }
 
-    /** {@code a * b}. */
+    /**
+     * The matrix product.
+     *
+     * @param a an n×k matrix
+     * @param b a k×m matrix
+     * @return {@code a * b}, n×m
+     * @throws IllegalArgumentException when the inner dimensions differ
+     */
     public static double[][] multiply(double[][] a, double[][] b) {
         int n = a.length;
         int inner = b.length;
@@ -61,7 +83,14 @@ public final class Matrices {
         return result;
     }
 
-    /** {@code a + b}. */
+    /**
+     * The sum.
+     *
+     * @param a a matrix
+     * @param b a matrix of the same shape
+     * @return {@code a + b}
+     * @throws IllegalArgumentException when the shapes differ
+     */
     public static double[][] add(double[][] a, double[][] b) {
         requireShape(a.length == b.length && a[0].length == b[0].length, "add", a, b);
         double[][] result = new double[a.length][a[0].length];
@@ -73,12 +102,25 @@ public final class Matrices {
         return result;
     }
 
-    /** {@code a - b}. */
+    /**
+     * The difference.
+     *
+     * @param a a matrix
+     * @param b a matrix of the same shape
+     * @return {@code a - b}
+     * @throws IllegalArgumentException when the shapes differ
+     */
     public static double[][] subtract(double[][] a, double[][] b) {
         return add(a, scale(b, -1.0));
     }
 
-    /** {@code factor * a}. */
+    /**
+     * The matrix times a scalar.
+     *
+     * @param a      a matrix
+     * @param factor the scalar
+     * @return {@code factor * a}
+     */
     public static double[][] scale(double[][] a, double factor) {
         double[][] result = new double[a.length][a[0].length];
         for (int i = 0; i < a.length; i++) {
@@ -89,7 +131,12 @@ public final class Matrices {
         return result;
     }
 
-    /** The maximum absolute column sum, ||a||₁. */
+    /**
+     * The maximum absolute column sum, ||a||₁.
+     *
+     * @param a a non-empty matrix
+     * @return the norm, 0 or more; NaN or infinite when an entry is
+     */
     public static double normOne(double[][] a) {
         double max = 0.0;
         for (int j = 0; j < a[0].length; j++) {
@@ -102,7 +149,14 @@ public final class Matrices {
         return max;
     }
 
-    /** The largest absolute entry difference between two matrices of the same shape. */
+    /**
+     * The largest absolute entry difference between two matrices, for tests and tolerances.
+     *
+     * @param a a matrix
+     * @param b a matrix of the same shape
+     * @return {@code max |a[i][j] - b[i][j]|}
+     * @throws IllegalArgumentException when the shapes differ
+     */
     public static double maxAbsDifference(double[][] a, double[][] b) {
         requireShape(a.length == b.length && a[0].length == b[0].length, "compare", a, b);
         double max = 0.0;
@@ -117,7 +171,11 @@ public final class Matrices {
     /**
      * Solves {@code a x = b} by Gaussian elimination with partial pivoting.
      *
-     * @throws IllegalArgumentException if {@code a} is singular to working precision
+     * @param a an n×n matrix
+     * @param b an n×m right-hand side
+     * @return x, n×m
+     * @throws IllegalArgumentException if {@code a} is singular to working precision, or the shapes
+     *                                  do not fit
      */
     public static double[][] solve(double[][] a, double[][] b) {
         int n = a.length;
@@ -165,12 +223,24 @@ public final class Matrices {
         return x;
     }
 
-    /** The inverse of a square, non-singular matrix. */
+    /**
+     * The inverse of a square, non-singular matrix.
+     *
+     * @param a an n×n matrix
+     * @return a⁻¹, n×n
+     * @throws IllegalArgumentException if {@code a} is not square or is singular to working
+     *                                  precision
+     */
     public static double[][] inverse(double[][] a) {
         return solve(a, identity(a.length));
     }
 
-    /** A readable multi-line rendering, for logs and test messages. */
+    /**
+     * A readable multi-line rendering, for logs and test messages.
+     *
+     * @param a a matrix
+     * @return one line per row, each ending with a newline
+     */
     public static String toString(double[][] a) {
         StringBuilder text = new StringBuilder();
         for (double[] row : a) {

@@ -14,7 +14,13 @@ public final class MatrixExponential {
 
     private MatrixExponential() {}
 
-    /** e^A for a square matrix A. */
+    /**
+     * e^A for a square matrix A.
+     *
+     * @param a a square, finite matrix; not modified
+     * @return e^A, a new matrix of the same size
+     * @throws IllegalArgumentException when {@code a} is empty, not square or not finite
+     */
     public static double[][] exp(double[][] a) {
         int n = a.length;
         if (n == 0 || a[0].length != n) {

@@ -43,6 +43,11 @@ public final class LinearModel {
      * <p>At {@code θ2 = 0} the Coriolis terms are quadratic in the rates and vanish, and
      * {@code sin θ2 ≈ θ2}, so {@code M0 q̈ = [u − b1 θ̇1, m g l2 θ2 − b2 θ̇2]} with the constant upright
      * mass matrix {@code M0}. θ1 is a cyclic coordinate, so A and B do not depend on θ1r.
+     *
+     * @param parameters         the pendulum's parameters
+     * @param theta1ReferenceRad θ1r, the arm angle of the equilibrium, in radians; finite
+     * @return the 4-state model
+     * @throws IllegalArgumentException when {@code theta1ReferenceRad} is not finite
      */
     public static LinearModel linearize(PendulumParameters parameters, double theta1ReferenceRad) {
         if (!Double.isFinite(theta1ReferenceRad)) {
@@ -70,7 +75,14 @@ public final class LinearModel {
 
     /**
      * The Jacobians of {@code f} at {@code (x0, u0)} by central differences with step {@code h}
-     * (relative to each variable's magnitude, at least {@code h}).
+     * (relative to each variable's magnitude, at least {@code h}). For checking
+     * {@link #linearize}.
+     *
+     * @param dynamics the nonlinear dynamics f
+     * @param x0       the state to linearize about
+     * @param u0       the torque to linearize about, in N·m
+     * @param h        the relative difference step, e.g. {@code 1e-6}
+     * @return the 4-state model
      */
     public static LinearModel numerical(PendulumDynamics dynamics, PendulumState x0, double u0,
             double h) {
@@ -101,27 +113,49 @@ public final class LinearModel {
         return new LinearModel(a, b);
     }
 
-    /** The state matrix A (a copy). */
+    /**
+     * The state matrix A.
+     *
+     * @return a copy of A, n×n
+     */
     public double[][] a() {
         return Matrices.copy(a);
     }
 
-    /** The input matrix B (a copy). */
+    /**
+     * The input matrix B.
+     *
+     * @return a copy of B, n×1
+     */
     public double[][] b() {
         return Matrices.copy(b);
     }
 
-    /** The number of states. */
+    /**
+     * The number of states.
+     *
+     * @return n, the size of A
+     */
     public int order() {
         return a.length;
     }
 
-    /** The open-loop eigenvalues of A, by decreasing modulus. */
+    /**
+     * The open-loop eigenvalues of A.
+     *
+     * @return the n eigenvalues, by decreasing modulus
+     * @throws ArithmeticException if the eigenvalue iteration does not converge
+     */
     public List<Complex> eigenvalues() {
         return Eigenvalues.of(a);
     }
 
-    /** The open-loop eigenvalue with the largest real part: the pendulum's unstable pole. */
+    /**
+     * The open-loop eigenvalue with the largest real part: the pendulum's unstable pole.
+     *
+     * @return the eigenvalue, in rad/s
+     * @throws ArithmeticException if the eigenvalue iteration does not converge
+     */
     public Complex mostUnstableEigenvalue() {
         return eigenvalues().stream()
                 .max((p, q) -> Double.compare(p.re(), q.re()))

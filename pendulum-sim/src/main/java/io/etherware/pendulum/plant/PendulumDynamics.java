@@ -30,7 +30,11 @@ public final class PendulumDynamics {
     private final double pendulumTermKgM2; // J2 + m l2²
     private final double gravityTorqueNm;  // m g l2
 
-    /** Dynamics for the given parameters. */
+    /**
+     * Dynamics for the given parameters, with the constant terms of equation (1) precomputed.
+     *
+     * @param parameters the pendulum's parameters
+     */
     public PendulumDynamics(PendulumParameters parameters) {
         this.parameters = parameters;
         double m = parameters.pendulumMassKg();
@@ -43,7 +47,11 @@ public final class PendulumDynamics {
         this.gravityTorqueNm = m * parameters.gravityMPerS2() * l2;
     }
 
-    /** The parameters. */
+    /**
+     * The parameters.
+     *
+     * @return the parameters these dynamics were built from
+     */
     public PendulumParameters parameters() {
         return parameters;
     }
@@ -83,7 +91,10 @@ public final class PendulumDynamics {
 
     /**
      * Total mechanical energy {@code ½ q̇ᵀ M q̇ + m g l2 (1 + cos θ2)}: zero hanging at rest,
-     * {@code 2 m g l2} upright at rest.
+     * {@code 2 m g l2} upright at rest. Allocation-free.
+     *
+     * @param x state {@code [θ1, θ̇1, θ2, θ̇2]}, in rad and rad/s
+     * @return the energy, in joules
      */
     public double energyJ(double[] x) {
         double rate1 = x[THETA1_RATE];

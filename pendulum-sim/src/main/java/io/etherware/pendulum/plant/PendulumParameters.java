@@ -56,7 +56,12 @@ public record PendulumParameters(
     /** Standard gravity. */
     public static final double STANDARD_GRAVITY_M_PER_S2 = 9.80665;
 
-    /** Validates every field; the message names the field, its value and what is allowed. */
+    /**
+     * Validates every field; the message names the field, its value and what is allowed.
+     *
+     * @throws IllegalArgumentException when a mass, length, inertia or the gravity is not finite
+     *                                  and positive, or a damping is not finite and 0 or more
+     */
     public PendulumParameters {
         requirePositive("pendulumMassKg", pendulumMassKg);
         requirePositive("armLengthM", armLengthM);
@@ -68,32 +73,64 @@ public record PendulumParameters(
         requirePositive("gravityMPerS2", gravityMPerS2);
     }
 
-    /** The paper's masses and lengths, the chosen J1 and J2, no friction, standard gravity. */
+    /**
+     * The paper's masses and lengths, the chosen J1 and J2, no friction, standard gravity.
+     *
+     * @return the default parameters
+     */
     public static PendulumParameters defaults() {
         return new PendulumParameters(DEFAULT_MASS_KG, DEFAULT_ARM_LENGTH_M,
                 DEFAULT_CENTER_OF_MASS_M, DEFAULT_ARM_INERTIA_KG_M2,
                 DEFAULT_PENDULUM_INERTIA_KG_M2, 0.0, 0.0, STANDARD_GRAVITY_M_PER_S2);
     }
 
-    /** A copy with viscous friction at both joints. */
+    /**
+     * A copy with viscous friction at both joints.
+     *
+     * @param armNmsPerRad      b1 at joint 1, in N·m·s/rad, finite and 0 or more
+     * @param pendulumNmsPerRad b2 at joint 2, in N·m·s/rad, finite and 0 or more
+     * @return the copy
+     * @throws IllegalArgumentException when a damping is out of range
+     */
     public PendulumParameters withDamping(double armNmsPerRad, double pendulumNmsPerRad) {
         return new PendulumParameters(pendulumMassKg, armLengthM, pendulumCenterOfMassM,
                 armInertiaKgM2, pendulumInertiaKgM2, armNmsPerRad, pendulumNmsPerRad, gravityMPerS2);
     }
 
-    /** A copy with other inertias J1 and J2. */
+    /**
+     * A copy with other inertias J1 and J2.
+     *
+     * @param armKgM2      J1, about the joint-1 axis, in kg·m², finite and positive
+     * @param pendulumKgM2 J2, about the pendulum's centre of mass, in kg·m², finite and positive
+     * @return the copy
+     * @throws IllegalArgumentException when an inertia is out of range
+     */
     public PendulumParameters withInertias(double armKgM2, double pendulumKgM2) {
         return new PendulumParameters(pendulumMassKg, armLengthM, pendulumCenterOfMassM,
                 armKgM2, pendulumKgM2, armDampingNmsPerRad, pendulumDampingNmsPerRad, gravityMPerS2);
     }
 
-    /** A copy with other mass and lengths m, l1, l2 (inertias unchanged). */
+    /**
+     * A copy with other mass and lengths m, l1, l2 (inertias unchanged).
+     *
+     * @param massKg        m, in kg, finite and positive
+     * @param armM          l1, in m, finite and positive
+     * @param centerOfMassM l2, in m, finite and positive
+     * @return the copy
+     * @throws IllegalArgumentException when a value is out of range
+     */
     public PendulumParameters withMassAndLengths(double massKg, double armM, double centerOfMassM) {
         return new PendulumParameters(massKg, armM, centerOfMassM, armInertiaKgM2,
                 pendulumInertiaKgM2, armDampingNmsPerRad, pendulumDampingNmsPerRad, gravityMPerS2);
     }
 
-    /** A copy with another gravity. */
+    /**
+     * A copy with another gravity.
+     *
+     * @param metresPerS2 g, in m/s², finite and positive
+     * @return the copy
+     * @throws IllegalArgumentException when {@code metresPerS2} is out of range
+     */
     public PendulumParameters withGravity(double metresPerS2) {
         return new PendulumParameters(pendulumMassKg, armLengthM, pendulumCenterOfMassM,
                 armInertiaKgM2, pendulumInertiaKgM2, armDampingNmsPerRad,

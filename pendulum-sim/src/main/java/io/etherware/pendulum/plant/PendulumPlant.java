@@ -23,7 +23,12 @@ public final class PendulumPlant {
     private final double[] stage = new double[PendulumState.SIZE];
     private long steps;
 
-    /** A plant at {@code initial} with the default 0.5 ms step. */
+    /**
+     * A plant at {@code initial} with the default 0.5 ms step.
+     *
+     * @param parameters the pendulum's parameters
+     * @param initial    the state at time 0
+     */
     public PendulumPlant(PendulumParameters parameters, PendulumState initial) {
         this(parameters, initial, DEFAULT_STEP_NS);
     }
@@ -31,7 +36,10 @@ public final class PendulumPlant {
     /**
      * A plant at {@code initial}.
      *
-     * @param stepNs the integration step, 1 µs to 10 ms
+     * @param parameters the pendulum's parameters
+     * @param initial    the state at time 0
+     * @param stepNs     the integration step, 1 µs to 10 ms
+     * @throws IllegalArgumentException when {@code stepNs} is out of range
      */
     public PendulumPlant(PendulumParameters parameters, PendulumState initial, long stepNs) {
         if (stepNs < 1_000L || stepNs > 10_000_000L) {
@@ -45,7 +53,11 @@ public final class PendulumPlant {
         initial.copyInto(x);
     }
 
-    /** Advances one step of {@link #stepNs()} with the torque held at {@code torqueNm}. */
+    /**
+     * Advances one step of {@link #stepNs()} with the torque held constant; allocation-free.
+     *
+     * @param torqueNm the motor torque u at joint 1 over the step, in N·m
+     */
     public void step(double torqueNm) {
         double h = stepS;
         dynamics.derivative(x, torqueNm, k1);
@@ -67,47 +79,84 @@ public final class PendulumPlant {
         steps++;
     }
 
-    /** The integration step. */
+    /**
+     * The integration step.
+     *
+     * @return the step, in nanoseconds
+     */
     public long stepNs() {
         return stepNs;
     }
 
-    /** Simulated time since construction or the last {@link #reset}: steps × step. */
+    /**
+     * Simulated time since construction or the last {@link #reset}.
+     *
+     * @return steps × step, in nanoseconds
+     */
     public long timeNs() {
         return steps * stepNs;
     }
 
-    /** θ1, the arm angle. */
+    /**
+     * θ1, the arm angle.
+     *
+     * @return the angle in radians, multi-turn (not wrapped)
+     */
     public double theta1Rad() {
         return x[PendulumState.THETA1];
     }
 
-    /** θ2, the pendulum angle, 0 upright. */
+    /**
+     * θ2, the pendulum angle.
+     *
+     * @return the angle in radians, 0 upright
+     */
     public double theta2Rad() {
         return x[PendulumState.THETA2];
     }
 
-    /** The current state, as a new value. */
+    /**
+     * The current state, as a new value; allocates.
+     *
+     * @return the state
+     */
     public PendulumState state() {
         return PendulumState.of(x);
     }
 
-    /** Copies the state vector into {@code out} without allocating. */
+    /**
+     * Copies the state vector into an array without allocating.
+     *
+     * @param out receives {@code [θ1, θ̇1, θ2, θ̇2]} in its first {@value PendulumState#SIZE} entries
+     * @throws IndexOutOfBoundsException when {@code out} is shorter than {@value PendulumState#SIZE}
+     */
     public void copyState(double[] out) {
         System.arraycopy(x, 0, out, 0, x.length);
     }
 
-    /** Total mechanical energy of the current state (see {@link PendulumDynamics#energyJ}). */
+    /**
+     * Total mechanical energy of the current state (see {@link PendulumDynamics#energyJ}).
+     *
+     * @return the energy, in joules
+     */
     public double energyJ() {
         return dynamics.energyJ(x);
     }
 
-    /** The dynamics being integrated. */
+    /**
+     * The dynamics being integrated.
+     *
+     * @return the dynamics, shareable between threads
+     */
     public PendulumDynamics dynamics() {
         return dynamics;
     }
 
-    /** Puts the plant in {@code state} and restarts its time at zero. */
+    /**
+     * Puts the plant in a state and restarts its time at zero.
+     *
+     * @param state the new state
+     */
     public void reset(PendulumState state) {
         state.copyInto(x);
         steps = 0;

@@ -31,12 +31,22 @@ public record BoardStatus(
         double appliedTorqueNm,
         int countsPerRevolution) {
 
-    /** Whether the watchdog has cut the motor and no command has arrived since. */
+    /**
+     * Whether the watchdog has cut the motor and no command has arrived since.
+     *
+     * @return true when {@link DspProtocol#FAULT_WATCHDOG} is set
+     */
     public boolean watchdogFault() {
         return (faults & DspProtocol.FAULT_WATCHDOG) != 0;
     }
 
-    /** Writes a STATUS frame answering request {@code sequence}; returns its length. */
+    /**
+     * Writes a STATUS frame answering a request; allocation-free.
+     *
+     * @param frame    the frame buffer, at least {@value DspProtocol#MAX_FRAME_BYTES} bytes
+     * @param sequence the request's sequence number, echoed; its low 16 bits are sent
+     * @return the frame length, in bytes
+     */
     public int encode(byte[] frame, int sequence) {
         int at = HEADER_BYTES;
         DspProtocol.putU16(frame, at, sequence);
@@ -52,7 +62,13 @@ public record BoardStatus(
         return DspProtocol.seal(frame, DspProtocol.STATUS, DspProtocol.STATUS_BYTES);
     }
 
-    /** Reads a STATUS payload (after its sequence number check by the caller). */
+    /**
+     * Reads a STATUS payload (after its sequence number check by the caller).
+     *
+     * @param payload the buffer holding a {@value DspProtocol#STATUS_BYTES}-byte STATUS payload
+     * @param offset  where the payload starts
+     * @return the status; counters are the wire's 32-bit values
+     */
     public static BoardStatus decode(byte[] payload, int offset) {
         return new BoardStatus(
                 payload[offset + 2] & 0xFF,

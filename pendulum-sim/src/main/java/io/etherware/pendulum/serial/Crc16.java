@@ -27,12 +27,27 @@ public final class Crc16 {
 
     private Crc16() {}
 
-    /** The CRC of {@code data[offset, offset + length)}. */
+    /**
+     * The CRC of a byte range.
+     *
+     * @param data   the bytes
+     * @param offset the first byte's index
+     * @param length how many bytes, 0 or more
+     * @return the CRC of {@code data[offset, offset + length)}, in [0, 0xFFFF]
+     */
     public static int of(byte[] data, int offset, int length) {
         return update(INITIAL, data, offset, length);
     }
 
-    /** Continues a CRC over more bytes. */
+    /**
+     * Continues a CRC over more bytes.
+     *
+     * @param crc    the CRC so far, {@link #INITIAL} to start
+     * @param data   the bytes
+     * @param offset the first byte's index
+     * @param length how many bytes, 0 or more
+     * @return the CRC including these bytes, in [0, 0xFFFF]
+     */
     public static int update(int crc, byte[] data, int offset, int length) {
         int register = crc;
         for (int i = offset; i < offset + length; i++) {

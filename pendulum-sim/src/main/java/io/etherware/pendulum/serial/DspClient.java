@@ -41,7 +41,13 @@ public final class DspClient {
         /** One resend after a lost frame. */
         public static final int DEFAULT_ATTEMPTS = 2;
 
-        /** Validates the fields. */
+        /**
+         * Validates the fields.
+         *
+         * @throws IllegalArgumentException when {@code countsPerRevolution} or
+         *                                  {@code responseTimeoutNs} is not positive, or
+         *                                  {@code attempts} is outside [1, 10]
+         */
         public Config {
             if (countsPerRevolution <= 0) {
                 throw new IllegalArgumentException("countsPerRevolution=" + countsPerRevolution
@@ -56,18 +62,35 @@ public final class DspClient {
             }
         }
 
-        /** 4096 counts per revolution, 4 ms timeout, 2 attempts. */
+        /**
+         * 4096 counts per revolution, 4 ms timeout, 2 attempts.
+         *
+         * @return the default settings
+         */
         public static Config defaults() {
             return new Config(DEFAULT_COUNTS_PER_REVOLUTION, DEFAULT_RESPONSE_TIMEOUT_NS,
                     DEFAULT_ATTEMPTS);
         }
 
-        /** A copy with another encoder resolution. */
+        /**
+         * A copy with another encoder resolution.
+         *
+         * @param counts encoder counts per revolution, greater than 0
+         * @return the copy
+         * @throws IllegalArgumentException when {@code counts} is not positive
+         */
         public Config withCountsPerRevolution(int counts) {
             return new Config(counts, responseTimeoutNs, attempts);
         }
 
-        /** A copy with another response timeout and number of attempts. */
+        /**
+         * A copy with another response timeout and number of attempts.
+         *
+         * @param timeoutNs    how long to wait for each reply, in nanoseconds, greater than 0
+         * @param attemptCount how many times a request is sent before the call fails, in [1, 10]
+         * @return the copy
+         * @throws IllegalArgumentException when a value is out of range
+         */
         public Config withTimeout(long timeoutNs, int attemptCount) {
             return new Config(countsPerRevolution, timeoutNs, attemptCount);
         }
@@ -106,7 +129,14 @@ public final class DspClient {
     private long failures;
     private long staleReplies;
 
-    /** A client on {@code link}, timing its waits with {@code clock}. */
+    /**
+     * A client on a link. The client does not close the link.
+     *
+     * @param link   the link to the board; this client must be its only reader and writer
+     * @param clock  times the waits for replies; the link's time base
+     * @param config the client's settings
+     * @throws NullPointerException when an argument is null
+     */
     public DspClient(SerialLink link, NodeClock clock, Config config) {
         this.link = Objects.requireNonNull(link, "link");
         this.clock = Objects.requireNonNull(clock, "clock");
@@ -114,7 +144,14 @@ public final class DspClient {
         this.radiansPerCount = 2.0 * Math.PI / config.countsPerRevolution();
     }
 
-    /** Samples both encoders. */
+    /**
+     * Samples both encoders. Blocks the calling thread for the exchange: up to
+     * {@link Config#attempts()} × {@link Config#responseTimeoutNs()}.
+     *
+     * @return the sample, with the board's time stamp unwrapped to 64 bits and the angles in rad
+     * @throws DspTimeoutException when no attempt got its reply in time
+     * @throws DspException        when the link fails
+     */
     public Angles readAngles() throws DspException {
         exchange(DspProtocol.READ_ANGLES, DspProtocol.ANGLES, 0.0);
         int counts1 = DspProtocol.getI32(replyPayload, 2);
@@ -124,7 +161,16 @@ public final class DspClient {
                 counts1 * radiansPerCount, counts2 * radiansPerCount);
     }
 
-    /** Commands the motor torque; the board clamps it to its range and says so in the ACK. */
+    /**
+     * Commands the motor torque; the board clamps it to its range and says so in the ACK. Blocks
+     * the calling thread for the exchange: up to {@link Config#attempts()} ×
+     * {@link Config#responseTimeoutNs()}.
+     *
+     * @param torqueNm the torque to apply, in N·m; NaN is sent as 0
+     * @return the board's acknowledgement
+     * @throws DspTimeoutException when no attempt got its reply in time
+     * @throws DspException        when the link fails
+     */
     public TorqueAck setTorque(double torqueNm) throws DspException {
         exchange(DspProtocol.SET_TORQUE, DspProtocol.ACK, torqueNm);
         return new TorqueAck(DspProtocol.getU16(replyPayload, 0), replyPayload[2] & 0xFF);
@@ -133,19 +179,31 @@ public final class DspClient {
     /**
      * Reads the board's fault flags and counters. Its 40-byte reply is twice an ANGLES reply, so
      * each attempt waits twice the response timeout.
+     *
+     * @return the board's flags and counters
+     * @throws DspTimeoutException when no attempt got its reply in time
+     * @throws DspException        when the link fails
      */
     public BoardStatus readStatus() throws DspException {
         exchange(DspProtocol.READ_STATUS, DspProtocol.STATUS, 0.0);
         return BoardStatus.decode(replyPayload, 0);
     }
 
-    /** The counters so far. */
+    /**
+     * The counters so far.
+     *
+     * @return a new snapshot, including the decoder's rejected frames and discarded bytes
+     */
     public Counters counters() {
         return new Counters(requests, timeouts, failures, staleReplies, decoder.framesRejected(),
                 decoder.bytesDiscarded());
     }
 
-    /** The link this client talks over. */
+    /**
+     * The link this client talks over.
+     *
+     * @return the link given at construction
+     */
     public SerialLink link() {
         return link;
     }

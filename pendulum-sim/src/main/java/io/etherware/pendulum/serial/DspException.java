@@ -7,12 +7,21 @@ public class DspException extends IOException {
 
     private static final long serialVersionUID = 1L;
 
-    /** An error with its explanation. */
+    /**
+     * An error with its explanation.
+     *
+     * @param message what failed, naming the request
+     */
     public DspException(String message) {
         super(message);
     }
 
-    /** An error caused by a link failure. */
+    /**
+     * An error caused by a link failure.
+     *
+     * @param message what failed, naming the request
+     * @param cause   the link's exception
+     */
     public DspException(String message, Throwable cause) {
         super(message, cause);
     }

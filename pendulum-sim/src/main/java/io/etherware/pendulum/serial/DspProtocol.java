@@ -66,7 +66,12 @@ public final class DspProtocol {
 
     private DspProtocol() {}
 
-    /** The payload size of a known type, or -1 for an unknown type. */
+    /**
+     * The payload size of a message type.
+     *
+     * @param type a message type, e.g. {@link #READ_ANGLES}
+     * @return the payload size in bytes; -1 for an unknown type
+     */
     public static int payloadBytes(int type) {
         return switch (type) {
             case READ_ANGLES -> READ_ANGLES_BYTES;
@@ -79,7 +84,12 @@ public final class DspProtocol {
         };
     }
 
-    /** A readable name of a type, for errors and logs. */
+    /**
+     * A readable name of a message type, for errors and logs.
+     *
+     * @param type a message type
+     * @return e.g. {@code READ_ANGLES}; {@code 0x7F} for an unknown type
+     */
     public static String typeName(int type) {
         return switch (type) {
             case READ_ANGLES -> "READ_ANGLES";
@@ -96,7 +106,11 @@ public final class DspProtocol {
      * Frames a payload already written at {@code frame[HEADER_BYTES ...]}: writes the header and
      * the CRC around it.
      *
-     * @return the frame length
+     * @param frame         the frame buffer, at least {@code OVERHEAD_BYTES + payloadLength} bytes
+     * @param type          the message type
+     * @param payloadLength the payload's length in bytes, within [0, {@value #MAX_PAYLOAD_BYTES}]
+     * @return the frame length, in bytes
+     * @throws IllegalArgumentException when {@code payloadLength} is out of range
      */
     public static int seal(byte[] frame, int type, int payloadLength) {
         if (payloadLength < 0 || payloadLength > MAX_PAYLOAD_BYTES) {
@@ -111,20 +125,43 @@ public final class DspProtocol {
         return OVERHEAD_BYTES + payloadLength;
     }
 
-    /** Writes a request that carries only a sequence (READ_ANGLES, READ_STATUS); returns its length. */
+    /**
+     * Writes a request that carries only a sequence (READ_ANGLES, READ_STATUS).
+     *
+     * @param frame    the frame buffer, at least {@value #OVERHEAD_BYTES} + 2 bytes
+     * @param type     {@link #READ_ANGLES} or {@link #READ_STATUS}
+     * @param sequence the request's sequence number; its low 16 bits are sent
+     * @return the frame length, in bytes
+     */
     public static int encodeRequest(byte[] frame, int type, int sequence) {
         putU16(frame, HEADER_BYTES, sequence);
         return seal(frame, type, 2);
     }
 
-    /** Writes a SET_TORQUE frame; returns its length. */
+    /**
+     * Writes a SET_TORQUE frame.
+     *
+     * @param frame    the frame buffer, at least {@value #OVERHEAD_BYTES} + {@value #SET_TORQUE_BYTES} bytes
+     * @param sequence the request's sequence number; its low 16 bits are sent
+     * @param torqueNm the torque to apply, in N·m (see {@link #torqueToWire})
+     * @return the frame length, in bytes
+     */
     public static int encodeSetTorque(byte[] frame, int sequence, double torqueNm) {
         putU16(frame, HEADER_BYTES, sequence);
         putI32(frame, HEADER_BYTES + 2, torqueToWire(torqueNm));
         return seal(frame, SET_TORQUE, SET_TORQUE_BYTES);
     }
 
-    /** Writes an ANGLES frame; returns its length. */
+    /**
+     * Writes an ANGLES frame.
+     *
+     * @param frame          the frame buffer, at least {@value #OVERHEAD_BYTES} + {@value #ANGLES_BYTES} bytes
+     * @param sequence       the request's sequence number, echoed; its low 16 bits are sent
+     * @param encoder1Counts joint-1 (arm) encoder count, multi-turn
+     * @param encoder2Counts joint-2 (pendulum) encoder count, multi-turn, 0 upright
+     * @param dspTimeUs      the board's time of the sample in µs; its low 32 bits are sent
+     * @return the frame length, in bytes
+     */
     public static int encodeAngles(byte[] frame, int sequence, int encoder1Counts,
             int encoder2Counts, long dspTimeUs) {
         putU16(frame, HEADER_BYTES, sequence);
@@ -134,14 +171,26 @@ public final class DspProtocol {
         return seal(frame, ANGLES, ANGLES_BYTES);
     }
 
-    /** Writes an ACK frame; returns its length. */
+    /**
+     * Writes an ACK frame.
+     *
+     * @param frame    the frame buffer, at least {@value #OVERHEAD_BYTES} + {@value #ACK_BYTES} bytes
+     * @param sequence the command's sequence number, echoed; its low 16 bits are sent
+     * @param flags    {@link #ACK_FAULT_WATCHDOG} and {@link #ACK_SATURATED}, or 0
+     * @return the frame length, in bytes
+     */
     public static int encodeAck(byte[] frame, int sequence, int flags) {
         putU16(frame, HEADER_BYTES, sequence);
         frame[HEADER_BYTES + 2] = (byte) flags;
         return seal(frame, ACK, ACK_BYTES);
     }
 
-    /** Torque on the wire: µN·m, rounded, saturated to the i32 range; NaN becomes 0. */
+    /**
+     * Torque on the wire.
+     *
+     * @param torqueNm a torque, in N·m
+     * @return µN·m, rounded, saturated to the i32 range (about ±2147 N·m); 0 for NaN
+     */
     public static int torqueToWire(double torqueNm) {
         double micro = Math.rint(torqueNm * MICRO_NEWTON_METRES_PER_NM);
         if (Double.isNaN(micro)) {
@@ -150,18 +199,35 @@ public final class DspProtocol {
         return (int) Math.max(Integer.MIN_VALUE, Math.min(Integer.MAX_VALUE, micro));
     }
 
-    /** Torque from the wire, N·m. */
+    /**
+     * Torque from the wire.
+     *
+     * @param microNewtonMetres the wire value, in µN·m
+     * @return the torque, in N·m
+     */
     public static double torqueFromWire(int microNewtonMetres) {
         return microNewtonMetres / MICRO_NEWTON_METRES_PER_NM;
     }
 
-    /** Big-endian unsigned 16-bit write. */
+    /**
+     * Big-endian unsigned 16-bit write.
+     *
+     * @param buffer the destination, at least {@code offset + 2} bytes
+     * @param offset where the high byte goes
+     * @param value  the value; its low 16 bits are written
+     */
     public static void putU16(byte[] buffer, int offset, int value) {
         buffer[offset] = (byte) (value >>> 8);
         buffer[offset + 1] = (byte) value;
     }
 
-    /** Big-endian 32-bit write. */
+    /**
+     * Big-endian 32-bit write.
+     *
+     * @param buffer the destination, at least {@code offset + 4} bytes
+     * @param offset where the highest byte goes
+     * @param value  the value, signed or an unsigned u32's low bits
+     */
     public static void putI32(byte[] buffer, int offset, int value) {
         buffer[offset] = (byte) (value >>> 24);
         buffer[offset + 1] = (byte) (value >>> 16);
@@ -169,18 +235,36 @@ public final class DspProtocol {
         buffer[offset + 3] = (byte) value;
     }
 
-    /** Big-endian unsigned 16-bit read. */
+    /**
+     * Big-endian unsigned 16-bit read.
+     *
+     * @param buffer the source, at least {@code offset + 2} bytes
+     * @param offset where the high byte is
+     * @return the value, in [0, 65535]
+     */
     public static int getU16(byte[] buffer, int offset) {
         return ((buffer[offset] & 0xFF) << 8) | (buffer[offset + 1] & 0xFF);
     }
 
-    /** Big-endian signed 32-bit read. */
+    /**
+     * Big-endian signed 32-bit read.
+     *
+     * @param buffer the source, at least {@code offset + 4} bytes
+     * @param offset where the highest byte is
+     * @return the value, as a signed int
+     */
     public static int getI32(byte[] buffer, int offset) {
         return ((buffer[offset] & 0xFF) << 24) | ((buffer[offset + 1] & 0xFF) << 16)
                 | ((buffer[offset + 2] & 0xFF) << 8) | (buffer[offset + 3] & 0xFF);
     }
 
-    /** Big-endian unsigned 32-bit read. */
+    /**
+     * Big-endian unsigned 32-bit read.
+     *
+     * @param buffer the source, at least {@code offset + 4} bytes
+     * @param offset where the highest byte is
+     * @return the value, in [0, 2³² − 1]
+     */
     public static long getU32(byte[] buffer, int offset) {
         return getI32(buffer, offset) & 0xFFFF_FFFFL;
     }

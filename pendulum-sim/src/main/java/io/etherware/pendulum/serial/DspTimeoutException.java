@@ -5,7 +5,11 @@ public class DspTimeoutException extends DspException {
 
     private static final long serialVersionUID = 1L;
 
-    /** A timeout with its explanation. */
+    /**
+     * A timeout with its explanation.
+     *
+     * @param message the request that went unanswered and how long the client waited
+     */
     public DspTimeoutException(String message) {
         super(message);
     }

@@ -20,6 +20,11 @@ public final class FrameDecoder {
         /**
          * Called on the feeding thread for each valid frame. {@code payload} is the decoder's own
          * buffer: read it before returning, do not keep it.
+         *
+         * @param type    the message type, a known one of {@link DspProtocol}
+         * @param payload the buffer holding the payload
+         * @param offset  where the payload starts in {@code payload}
+         * @param length  the payload's length, the type's payload size
          */
         void onFrame(int type, byte[] payload, int offset, int length);
     }
@@ -30,7 +35,16 @@ public final class FrameDecoder {
     private long framesRejected;
     private long bytesDiscarded;
 
-    /** Feeds received bytes; calls {@code listener} for every complete valid frame among them. */
+    /**
+     * Feeds received bytes; calls {@code listener} for every complete valid frame among them. A
+     * frame may span several calls.
+     *
+     * @param data     the received bytes
+     * @param offset   where they start in {@code data}
+     * @param length   how many there are, 0 or more
+     * @param listener receives each valid frame, on this thread; an exception it throws propagates
+     *                 to the caller after its frame is consumed
+     */
     public void accept(byte[] data, int offset, int length, Listener listener) {
         for (int i = offset; i < offset + length; i++) {
             buffer[count++] = data[i];
@@ -95,22 +109,38 @@ public final class FrameDecoder {
         count = 0;
     }
 
-    /** Valid frames delivered. */
+    /**
+     * Valid frames delivered.
+     *
+     * @return the count since construction
+     */
     public long framesAccepted() {
         return framesAccepted;
     }
 
-    /** Candidate frames rejected: unknown type, wrong length or bad CRC. */
+    /**
+     * Candidate frames rejected: unknown type, wrong length or bad CRC.
+     *
+     * @return the count since construction
+     */
     public long framesRejected() {
         return framesRejected;
     }
 
-    /** Bytes skipped while hunting for a start byte, including rejected start bytes. */
+    /**
+     * Bytes skipped while hunting for a start byte, including rejected start bytes.
+     *
+     * @return the count since construction
+     */
     public long bytesDiscarded() {
         return bytesDiscarded;
     }
 
-    /** Bytes held waiting for the rest of a frame. */
+    /**
+     * Bytes held waiting for the rest of a frame.
+     *
+     * @return the count, in [0, {@value DspProtocol#MAX_FRAME_BYTES})
+     */
     public int bufferedBytes() {
         return count;
     }

@@ -31,9 +31,13 @@ public final class JSerialCommLink implements SerialLink {
 
     /**
      * Opens {@code portPath} (e.g. {@code /dev/ttyUSB0}, {@code COM3}, a pseudo-terminal slave) at
-     * {@code baudRate} 8N1.
+     * {@code baudRate} 8N1, without flow control. Call it at start, not on a real-time thread.
      *
+     * @param portPath the port's name or path, e.g. {@code /dev/ttyUSB0}
+     * @param baudRate bits per second, greater than 0, e.g. 115200
+     * @return the open link; close it when done
      * @throws IOException naming the port and jSerialComm's error code and location
+     * @throws IllegalArgumentException when {@code baudRate} is not positive
      */
     public static JSerialCommLink open(String portPath, int baudRate) throws IOException {
         if (baudRate <= 0) {

@@ -11,12 +11,19 @@ import java.io.IOException;
  */
 public interface SerialLink extends AutoCloseable {
 
-    /** A name for logs and errors, e.g. the port path. */
+    /**
+     * A name for logs and errors.
+     *
+     * @return e.g. the port path
+     */
     String name();
 
     /**
      * Queues bytes for transmission and returns without waiting for them to be on the wire.
      *
+     * @param data   the bytes
+     * @param offset where they start in {@code data}
+     * @param length how many to send
      * @throws IOException if the link is closed or the port failed
      */
     void write(byte[] data, int offset, int length) throws IOException;
@@ -24,7 +31,10 @@ public interface SerialLink extends AutoCloseable {
     /**
      * Reads the bytes that have arrived, waiting up to {@code timeoutNs} for the first one.
      *
-     * @param timeoutNs 0 to return at once
+     * @param buffer    receives the bytes
+     * @param offset    where to put the first one in {@code buffer}
+     * @param length    the most bytes to read
+     * @param timeoutNs how long to wait for the first byte, in nanoseconds; 0 to return at once
      * @return the number of bytes read, 0 if none arrived within the timeout
      * @throws IOException if the link is closed or the port failed
      */

@@ -35,7 +35,14 @@ public final class SimulatedSerialLink {
         /** 115200 baud, the paper's RS-232C rate. */
         public static final int DEFAULT_BAUD_RATE = 115_200;
 
-        /** Validates every field; messages name the field and value. */
+        /**
+         * Validates every field; messages name the field and value.
+         *
+         * @throws IllegalArgumentException when {@code baudRate} is outside [50, 20000000],
+         *                                  {@code bitsPerByte} outside [8, 13], a probability
+         *                                  outside [0, 1], or {@code receiveBufferBytes} smaller
+         *                                  than one frame ({@value DspProtocol#MAX_FRAME_BYTES})
+         */
         public Config {
             if (baudRate < 50 || baudRate > 20_000_000) {
                 throw new IllegalArgumentException("baudRate=" + baudRate + ": must be within [50, 20000000]");
@@ -52,24 +59,46 @@ public final class SimulatedSerialLink {
             }
         }
 
-        /** 115200 baud 8N1, no faults, a 4 KiB receive buffer. */
+        /**
+         * 115200 baud 8N1, no faults, a 4 KiB receive buffer.
+         *
+         * @return the default settings, with seed 1
+         */
         public static Config defaults() {
             return new Config(DEFAULT_BAUD_RATE, 10, 0.0, 0.0, 1L, 4096);
         }
 
-        /** A copy at another baud rate. */
+        /**
+         * A copy at another baud rate.
+         *
+         * @param bitsPerSecond the baud rate, within [50, 20000000]
+         * @return the copy
+         * @throws IllegalArgumentException when {@code bitsPerSecond} is out of range
+         */
         public Config withBaudRate(int bitsPerSecond) {
             return new Config(bitsPerSecond, bitsPerByte, bitFlipProbabilityPerByte,
                     dropProbabilityPerByte, seed, receiveBufferBytes);
         }
 
-        /** A copy with fault injection. */
+        /**
+         * A copy with fault injection.
+         *
+         * @param bitFlipPerByte chance that a byte arrives with one bit flipped, within [0, 1]
+         * @param dropPerByte    chance that a byte is lost, within [0, 1]
+         * @param randomSeed     the seed, so that a run with faults can be repeated
+         * @return the copy
+         * @throws IllegalArgumentException when a probability is out of range
+         */
         public Config withFaults(double bitFlipPerByte, double dropPerByte, long randomSeed) {
             return new Config(baudRate, bitsPerByte, bitFlipPerByte, dropPerByte, randomSeed,
                     receiveBufferBytes);
         }
 
-        /** The time one byte takes on the wire. */
+        /**
+         * The time one byte takes on the wire.
+         *
+         * @return {@code bitsPerByte / baudRate}, in nanoseconds (about 86806 at 115200 baud 8N1)
+         */
         public double byteTimeNs() {
             return bitsPerByte * 1e9 / baudRate;
         }
@@ -118,32 +147,60 @@ public final class SimulatedSerialLink {
         }
     }
 
-    /** A cable in real time, on {@link System#nanoTime()}. */
+    /**
+     * A cable in real time, on {@link System#nanoTime()}: a reader blocks until bytes arrive.
+     *
+     * @param config the cable's settings
+     * @return the cable
+     */
     public static SimulatedSerialLink realTime(Config config) {
         return new SimulatedSerialLink(config, null);
     }
 
-    /** A cable in the simulated time of {@code clock}. */
+    /**
+     * A cable in the simulated time of a lock-step clock, which it registers with as a participant.
+     *
+     * @param config the cable's settings
+     * @param clock  the clock; a reader's wait advances its time
+     * @return the cable
+     * @throws NullPointerException when {@code clock} is null
+     */
     public static SimulatedSerialLink lockStep(Config config, LockStepClock clock) {
         return new SimulatedSerialLink(config, java.util.Objects.requireNonNull(clock, "clock"));
     }
 
-    /** The controller host's end. */
+    /**
+     * The controller host's end.
+     *
+     * @return the end a {@link DspClient} uses
+     */
     public SerialLink hostEnd() {
         return hostEnd;
     }
 
-    /** The DSP board's end. */
+    /**
+     * The DSP board's end.
+     *
+     * @return the end the simulated board uses
+     */
     public SerialLink boardEnd() {
         return boardEnd;
     }
 
-    /** What happened to the bytes from host to board. */
+    /**
+     * What happened to the bytes from host to board.
+     *
+     * @return a new snapshot
+     */
     public Counters hostToBoardCounters() {
         return hostToBoard.counters();
     }
 
-    /** What happened to the bytes from board to host. */
+    /**
+     * What happened to the bytes from board to host.
+     *
+     * @return a new snapshot
+     */
     public Counters boardToHostCounters() {
         return boardToHost.counters();
     }

@@ -8,12 +8,20 @@ package io.etherware.pendulum.serial;
  */
 public record TorqueAck(int sequence, int flags) {
 
-    /** Whether the watchdog had cut the motor before this command re-enabled it. */
+    /**
+     * Whether the watchdog had cut the motor before this command re-enabled it.
+     *
+     * @return true when {@link DspProtocol#ACK_FAULT_WATCHDOG} is set
+     */
     public boolean watchdogWasTripped() {
         return (flags & DspProtocol.ACK_FAULT_WATCHDOG) != 0;
     }
 
-    /** Whether the command exceeded the motor's torque range and was clamped. */
+    /**
+     * Whether the command exceeded the motor's torque range and was clamped.
+     *
+     * @return true when {@link DspProtocol#ACK_SATURATED} is set
+     */
     public boolean saturated() {
         return (flags & DspProtocol.ACK_SATURATED) != 0;
     }

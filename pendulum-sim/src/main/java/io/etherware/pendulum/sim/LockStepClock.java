@@ -22,12 +22,20 @@ public final class LockStepClock implements NodeClock {
 
     /** Something that lives in simulated time. */
     public interface Participant {
-        /** The time of this participant's next event strictly after {@code nowNs}, or {@link Long#MAX_VALUE}. */
+        /**
+         * When this participant's next event is. Must not wait or change state.
+         *
+         * @param nowNs the clock's current simulated time, in nanoseconds
+         * @return the time of the next event strictly after {@code nowNs}, in nanoseconds, or
+         *     {@link Long#MAX_VALUE} when none is pending
+         */
         long nextEventNs(long nowNs);
 
         /**
          * Catches up to {@code nowNs}, handling every event due at or before it. Must not wait:
          * no blocking reads, no calls back into {@link #advanceTo} or {@link #advanceUntil}.
+         *
+         * @param nowNs the new simulated time, in nanoseconds
          */
         void advanceTo(long nowNs);
     }
@@ -40,22 +48,40 @@ public final class LockStepClock implements NodeClock {
     /** A clock at time 0. */
     public LockStepClock() {}
 
-    /** Adds a participant; it is first advanced at the next move of time. */
+    /**
+     * Adds a participant; it is first advanced at the next move of time.
+     *
+     * @param participant the participant, on the thread that drives the run
+     */
     public void register(Participant participant) {
         participants.add(participant);
     }
 
+    /**
+     * The simulated time; readable from any thread, it moves only in {@link #advanceUntil}.
+     *
+     * @return nanoseconds since the clock was made
+     */
     @Override
     public long nanoTime() {
         return nowNs;
     }
 
+    /**
+     * The simulated time as a wall-clock time, starting at 2026-01-01T00:00Z.
+     *
+     * @return nanoseconds since the Unix epoch
+     */
     @Override
     public long epochNanos() {
         return EPOCH_AT_ZERO_NS + nowNs;
     }
 
-    /** Runs the world up to {@code targetNs} (no-op if it is in the past). */
+    /**
+     * Runs the world up to a time (no-op if it is in the past).
+     *
+     * @param targetNs the simulated time to reach, in nanoseconds
+     */
     public void advanceTo(long targetNs) {
         advanceUntil(() -> false, targetNs);
     }
@@ -63,6 +89,8 @@ public final class LockStepClock implements NodeClock {
     /**
      * Runs the world event by event until {@code ready} holds or time reaches {@code deadlineNs}.
      *
+     * @param ready      checked before each move of time, on this thread
+     * @param deadlineNs the simulated time at which to give up, in nanoseconds
      * @return whether {@code ready} held
      */
     public boolean advanceUntil(BooleanSupplier ready, long deadlineNs) {
