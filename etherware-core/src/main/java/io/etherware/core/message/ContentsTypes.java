@@ -36,7 +36,7 @@ public final class ContentsTypes {
         register("tick", Tick.class);
     }
 
-    /** The process-wide registry. */
+    /** {@return the process-wide registry, which codecs use unless given another} */
     public static ContentsTypes shared() {
         return SHARED;
     }
@@ -44,6 +44,10 @@ public final class ContentsTypes {
     /**
      * Registers {@code type} under {@code name}.
      *
+     * @param <T>  the record type
+     * @param name the wire name; must match {@link #TYPE_NAME_PATTERN}
+     * @param type the record class to register
+     * @return this registry, to chain registrations
      * @throws IllegalArgumentException if the name is malformed, the type is not a record, or
      *                                  either is already registered with another partner
      */
@@ -75,7 +79,11 @@ public final class ContentsTypes {
         return this;
     }
 
-    /** The record type registered under {@code name}, or null. */
+    /**
+     * {@return the record type registered under {@code name}, or null if there is none}
+     *
+     * @param name a wire name
+     */
     public Class<? extends Contents> typeOf(String name) {
         return byName.get(name);
     }
@@ -83,6 +91,8 @@ public final class ContentsTypes {
     /**
      * The wire name of {@code type}.
      *
+     * @param type a contents record class
+     * @return the name it was registered under
      * @throws MessageFormatException if the type was never registered
      */
     public String nameOf(Class<? extends Contents> type) {
@@ -94,12 +104,16 @@ public final class ContentsTypes {
         return name;
     }
 
-    /** Whether {@code type} has a wire name. */
+    /**
+     * {@return whether {@code type} has a wire name}
+     *
+     * @param type a contents record class
+     */
     public boolean isRegistered(Class<? extends Contents> type) {
         return byType.containsKey(type);
     }
 
-    /** The registered names, sorted. */
+    /** {@return the registered names, sorted; a copy, unaffected by later registrations} */
     public Set<String> names() {
         return new TreeSet<>(byName.keySet());
     }
