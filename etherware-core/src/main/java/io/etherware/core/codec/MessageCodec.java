@@ -113,7 +113,7 @@ public final class MessageCodec {
         reader = mapper.readerFor(Message.class);
     }
 
-    /** A builder starting from the defaults. */
+    /** {@return a builder starting from the defaults} */
     public static Builder builder() {
         return new Builder();
     }
@@ -121,6 +121,8 @@ public final class MessageCodec {
     /**
      * The message as a UTF-8 XML document.
      *
+     * @param message the message to encode; its {@link Message#origin()} is not written
+     * @return the document, without an XML declaration, at most {@link #maxDocumentBytes()} long
      * @throws MessageFormatException if its contents type is not registered, a string holds a
      *                                character XML cannot carry, or it exceeds a limit
      */
@@ -139,7 +141,13 @@ public final class MessageCodec {
         return document;
     }
 
-    /** The message as an XML document in a String; the same document as {@link #encode}. */
+    /**
+     * The message as an XML document in a String; the same document as {@link #encode}.
+     *
+     * @param message the message to encode
+     * @return the document as text
+     * @throws MessageFormatException for the reasons of {@link #encode}
+     */
     public String encodeToString(Message message) {
         return new String(encode(message), StandardCharsets.UTF_8);
     }
@@ -147,6 +155,8 @@ public final class MessageCodec {
     /**
      * The message in a UTF-8 XML document.
      *
+     * @param document the document's bytes, from an untrusted peer
+     * @return the decoded message, without an origin (the network layer sets it)
      * @throws MessageFormatException saying what is wrong with the document
      */
     public Message decode(byte[] document) {
@@ -172,6 +182,8 @@ public final class MessageCodec {
      * The message in an XML document given as text. The size limit counts its chars, which are
      * never more than its UTF-8 bytes.
      *
+     * @param document the document, from an untrusted source
+     * @return the decoded message, without an origin
      * @throws MessageFormatException saying what is wrong with the document
      */
     public Message decode(String document) {
@@ -209,22 +221,22 @@ public final class MessageCodec {
         }
     }
 
-    /** The registry contents types are looked up in. */
+    /** {@return the registry contents types are looked up in} */
     public ContentsTypes contentsTypes() {
         return contentsTypes;
     }
 
-    /** The largest document, in bytes, that is encoded or decoded. */
+    /** {@return the largest document, in bytes, that is encoded or decoded} */
     public int maxDocumentBytes() {
         return maxDocumentBytes;
     }
 
-    /** The deepest element nesting accepted, {@code <message>} counting as 1. */
+    /** {@return the deepest element nesting accepted, {@code <message>} counting as 1} */
     public int maxNestingDepth() {
         return maxNestingDepth;
     }
 
-    /** The longest text (element content or attribute value) accepted, in chars. */
+    /** {@return the longest text (element content or attribute value) accepted, in chars} */
     public int maxTextLength() {
         return maxTextLength;
     }
@@ -251,33 +263,52 @@ public final class MessageCodec {
         /**
          * The registry of contents types; default a new one with only the built-in types. Give the
          * node's ({@code Kernel.contentsTypes()}) for a codec that carries a node's messages.
+         *
+         * @param types the registry decoding instantiates from and encoding names types by
+         * @return this builder
          */
         public Builder contentsTypes(ContentsTypes types) {
             this.contentsTypes = Objects.requireNonNull(types, "contentsTypes");
             return this;
         }
 
-        /** Largest document in bytes, 256 B to 256 MiB; default 1 MiB. */
+        /**
+         * Largest document in bytes; default 1 MiB.
+         *
+         * @param bytes the limit, 256 B to 256 MiB (checked by {@link #build()})
+         * @return this builder
+         */
         public Builder maxDocumentBytes(int bytes) {
             this.maxDocumentBytes = bytes;
             return this;
         }
 
-        /** Deepest element nesting, 3 to 1000, {@code <message>} counting as 1; default 64. */
+        /**
+         * Deepest element nesting, {@code <message>} counting as 1; default 64.
+         *
+         * @param depth the limit, 3 to 1000 (checked by {@link #build()})
+         * @return this builder
+         */
         public Builder maxNestingDepth(int depth) {
             this.maxNestingDepth = depth;
             return this;
         }
 
-        /** Longest text or attribute value in chars, 64 to 256 Mi; default 512 Ki. */
+        /**
+         * Longest text or attribute value in chars; default 512 Ki.
+         *
+         * @param chars the limit, 64 to 256 Mi (checked by {@link #build()})
+         * @return this builder
+         */
         public Builder maxTextLength(int chars) {
             this.maxTextLength = chars;
             return this;
         }
 
         /**
-         * The codec.
+         * Validates the settings and builds the codec.
          *
+         * @return a new, immutable codec
          * @throws IllegalArgumentException naming the setting and its value if one is out of range
          */
         public MessageCodec build() {

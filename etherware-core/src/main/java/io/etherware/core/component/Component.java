@@ -25,6 +25,8 @@ public interface Component {
      * thread that starts the component (the node's {@code start()} caller, the caller of a
      * runtime add, or the dispatcher that restarts the component after a failure).
      *
+     * @param context what the component may do; valid for the component's whole life, from any
+     *                thread
      * @throws Exception to refuse to start; the component then goes to
      *                   {@link Shell.State#FAILED}
      */
@@ -34,6 +36,8 @@ public interface Component {
     /**
      * Handles one message. Called on a dispatcher thread; must not block.
      *
+     * @param message the message, addressed to this component's profile (or a query it matched)
+     * @param context the same context {@link #onStart} received
      * @throws Exception any failure; it goes to the kernel's supervision (restart policy),
      *                   never to the dispatcher
      */
@@ -50,6 +54,8 @@ public interface Component {
      * The component's state now, at a message boundary, or null for a component without state.
      * With the default restart policy the kernel calls this after every message it handled
      * successfully, so it must be cheap: return an immutable record, do not copy large arrays.
+     *
+     * @return the state, a record registered as contents; null for none (the default)
      */
     default ComponentState snapshot() {
         return null;
@@ -60,6 +66,8 @@ public interface Component {
      * upgrade handing over the previous version's state (check
      * {@link ComponentState#schemaVersion()} to convert old state).
      *
+     * @param state a state this component type's {@link #snapshot()} returned, possibly from an
+     *              older version of it; never null (a null snapshot is not restored)
      * @throws Exception if the state cannot be used; an upgrade is then rolled back
      */
     default void restore(ComponentState state) throws Exception {

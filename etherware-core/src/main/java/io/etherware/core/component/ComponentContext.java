@@ -23,16 +23,23 @@ import org.slf4j.Logger;
  */
 public interface ComponentContext {
 
-    /** This component's profile, which receivers see as the sender. */
+    /** {@return this component's profile, which receivers see as the sender} */
     Profile self();
 
-    /** The node's clock. */
+    /** {@return the node's clock, for time stamps and for measuring on the monotonic clock} */
     NodeClock clock();
 
-    /** A logger named after this component. */
+    /** {@return a logger named after this component ({@code etherware.component.<profile>})} */
     Logger logger();
 
-    /** Sends best-effort contents ({@link QoS#NONE}) to {@code to}. */
+    /**
+     * Sends best-effort contents ({@link QoS#NONE}) to {@code to}.
+     *
+     * @param to       the receiver: an exact profile or a query that matches exactly one component
+     * @param contents the payload, a registered record
+     * @return the id of the message sent
+     * @see #send(Profile, Contents, QoS)
+     */
     default MessageId send(Profile to, Contents contents) {
         return send(to, contents, QoS.NONE);
     }
@@ -41,6 +48,9 @@ public interface ComponentContext {
      * Sends {@code contents} to the component that {@code to} resolves to: an exact profile, or a
      * query (role plus some attributes) that matches exactly one component.
      *
+     * @param to       the receiver: an exact profile or a query that matches exactly one component
+     * @param contents the payload, a registered record
+     * @param qos      the delivery requirements; {@link QoS#NONE} for best effort
      * @return the id of the message sent
      */
     MessageId send(Profile to, Contents contents, QoS qos);
@@ -49,6 +59,9 @@ public interface ComponentContext {
      * Replies to {@code request}: a message to its sender, carrying the request's id as
      * correlation id and the request's QoS.
      *
+     * @param request  the message to answer
+     * @param contents the reply's payload, a registered record
+     * @return the id of the reply
      * @throws IllegalArgumentException if the request has no sender to reply to
      */
     MessageId reply(Message request, Contents contents);
@@ -56,6 +69,10 @@ public interface ComponentContext {
     /**
      * Sends a request with the node's default timeout and best-effort QoS.
      *
+     * @param to       the responder: an exact profile or a query that matches exactly one component
+     * @param contents the request's payload, a registered record
+     * @return the future reply, completed on this component's dispatcher
+     * @throws IllegalStateException if the node is closed
      * @see #request(Profile, Contents, QoS, long)
      */
     CompletableFuture<Message> request(Profile to, Contents contents);
@@ -70,7 +87,14 @@ public interface ComponentContext {
      * <p>Never wait for the future on a dispatcher thread ({@code join}, {@code get}): the reply
      * needs this component's turn, which the waiting handler holds.
      *
-     * @param timeoutNs how long to wait for the reply; must be &gt; 0
+     * @param to        the responder: an exact profile or a query matching exactly one component
+     * @param contents  the request's payload, a registered record
+     * @param qos       the delivery requirements of the request (and of a reply made with
+     *                  {@link #reply})
+     * @param timeoutNs how long to wait for the reply, in nanoseconds; must be &gt; 0
+     * @return the future reply, completed on this component's dispatcher
+     * @throws IllegalArgumentException if {@code timeoutNs} is not positive
+     * @throws IllegalStateException    if the node is closed
      */
     CompletableFuture<Message> request(Profile to, Contents contents, QoS qos, long timeoutNs);
 
@@ -78,7 +102,14 @@ public interface ComponentContext {
      * Sends a request and waits for the reply, for code outside dispatcher threads (a
      * component's own I/O thread, {@link Component#onStart} at node start).
      *
-     * @throws IllegalStateException  when called on a dispatcher thread (it would deadlock)
+     * @param to        the responder: an exact profile or a query matching exactly one component
+     * @param contents  the request's payload, a registered record
+     * @param qos       the delivery requirements of the request
+     * @param timeoutNs how long to wait for the reply, in nanoseconds; must be &gt; 0
+     * @return the reply
+     * @throws IllegalArgumentException if {@code timeoutNs} is not positive
+     * @throws IllegalStateException  when called on a dispatcher thread (it would deadlock), or
+     *                                when the node is closed
      * @throws RequestFailedException when no reply comes, for the reasons of {@link #request}
      */
     Message requestBlocking(Profile to, Contents contents, QoS qos, long timeoutNs);

@@ -17,6 +17,8 @@ public interface ComponentState extends Contents {
     /**
      * The version of this state's layout. Raise it when the record changes incompatibly, so an
      * upgraded component's {@link Component#restore} can tell old state from new and convert it.
+     *
+     * @return the layout version, 1 unless overridden
      */
     default int schemaVersion() {
         return 1;

@@ -24,26 +24,44 @@ public final class RequestFailedException extends RuntimeException {
         INTERRUPTED
     }
 
+    /** What went wrong. */
     private final Reason reason;
+    /** The request that failed. */
     private final MessageId requestId;
 
+    /**
+     * A failure without an underlying exception.
+     *
+     * @param reason    what went wrong
+     * @param requestId the id of the request that failed
+     * @param message   the text for logs, naming the request and the cause
+     */
     public RequestFailedException(Reason reason, MessageId requestId, String message) {
         super(message);
         this.reason = reason;
         this.requestId = requestId;
     }
 
+    /**
+     * A failure caused by another exception.
+     *
+     * @param reason    what went wrong
+     * @param requestId the id of the request that failed
+     * @param message   the text for logs, naming the request and the cause
+     * @param cause     the underlying exception, e.g. the interruption or an earlier failure
+     */
     public RequestFailedException(Reason reason, MessageId requestId, String message, Throwable cause) {
         super(message, cause);
         this.reason = reason;
         this.requestId = requestId;
     }
 
+    /** {@return what went wrong, for code that treats a timeout unlike a refusal} */
     public Reason reason() {
         return reason;
     }
 
-    /** The id of the request that failed. */
+    /** {@return the id of the request that failed} */
     public MessageId requestId() {
         return requestId;
     }

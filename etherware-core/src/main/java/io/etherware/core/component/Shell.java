@@ -34,24 +34,24 @@ public interface Shell {
         FAILED
     }
 
-    /** The profile the component was registered with. */
+    /** {@return the profile the component was registered with} */
     Profile profile();
 
-    /** The lifecycle state now. */
+    /** {@return the lifecycle state now} */
     State state();
 
-    /** Messages handled without an exception. */
+    /** {@return how many messages the component handled without an exception} */
     long handledCount();
 
-    /** Messages whose handling threw. */
+    /** {@return how many messages the component's handling threw on} */
     long failedCount();
 
-    /** Restarts applied by the restart policy (not counting node-wide resets). */
+    /** {@return the restarts applied by the restart policy (not counting node-wide resets)} */
     long restartCount();
 
-    /** How long the last handling took, in nanoseconds of the node's monotonic clock. */
+    /** {@return how long the last handling took, in nanoseconds of the node's monotonic clock} */
     long lastHandlingNs();
 
-    /** The class of the current logic; changes when an upgrade swaps it. */
+    /** {@return the class of the current logic; it changes when an upgrade swaps it} */
     Class<? extends Component> logicType();
 }

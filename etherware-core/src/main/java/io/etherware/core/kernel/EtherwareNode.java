@@ -56,12 +56,17 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
         this.core = new KernelCore(config);
     }
 
-    /** A builder with the defaults of {@link NodeConfig.Builder}. */
+    /** {@return a builder with the defaults of {@link NodeConfig.Builder}} */
     public static Builder builder() {
         return new Builder();
     }
 
-    /** A node with the given configuration, not started. */
+    /**
+     * A node with the given configuration, not started. Calls the scheduler factory once.
+     *
+     * @param config the node's configuration, validated when it was built
+     * @return the node
+     */
     public static EtherwareNode create(NodeConfig config) {
         return new EtherwareNode(config);
     }
@@ -70,18 +75,28 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
      * Registers the kernel's notices ({@code undeliverable}, {@code request-failed}) in a
      * contents registry. A node does this for its own registry ({@link #contentsTypes()}); call it
      * for a codec built apart from a node that must read a node's notices.
+     *
+     * @param types a registry for a codec that must read or write the notices
+     * @throws IllegalArgumentException if either name is already registered for another type
      */
     public static void registerContents(ContentsTypes types) {
         KernelCore.registerContents(types);
     }
 
+    /** {@return the configuration the node was built with} */
     public NodeConfig config() {
         return core.config();
     }
 
     // ---------------------------------------------------------------- lifecycle
 
-    /** Starts the scheduler, then the components in registration order. Once. */
+    /**
+     * Starts the scheduler, then the components in registration order, on the calling thread. A
+     * component whose {@code onStart} throws is FAILED; the others start regardless.
+     *
+     * @return this node
+     * @throws IllegalStateException if the node was started or closed before
+     */
     public EtherwareNode start() {
         core.start();
         return this;
@@ -91,13 +106,29 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
      * Adds a component with the node's default supervision policy; starts it now if the node
      * runs. {@code factory} makes the first instance now and new ones for restarts.
      *
-     * @throws IllegalArgumentException if the profile is already registered
+     * @param profile the component's exact profile; a remote route registered for it is displaced
+     * @param factory makes the component's logic: the first instance now (what it throws
+     *                propagates), new ones for restarts
+     * @return the component's shell
+     * @throws IllegalArgumentException if a local component already has the profile
+     * @throws IllegalStateException    if the node is closing or closed
      */
     public Shell add(Profile profile, Supplier<? extends Component> factory) {
         return core.add(profile, factory, core.config().supervision());
     }
 
-    /** Adds a component with its own supervision policy. */
+    /**
+     * Adds a component with its own supervision policy; starts it now if the node runs.
+     *
+     * @param profile     the component's exact profile; a remote route registered for it is
+     *                    displaced
+     * @param factory     makes the component's logic: the first instance now (what it throws
+     *                    propagates), new ones for restarts
+     * @param supervision the component's restart policy
+     * @return the component's shell
+     * @throws IllegalArgumentException if a local component already has the profile
+     * @throws IllegalStateException    if the node is closing or closed
+     */
     public Shell add(Profile profile, Supplier<? extends Component> factory, SupervisionPolicy supervision) {
         return core.add(profile, factory, supervision);
     }
@@ -112,35 +143,60 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
         return core.remove(profile);
     }
 
-    /** {@link #removeAsync} and wait until the component has stopped. */
+    /**
+     * {@link #removeAsync} and wait until the component has stopped.
+     *
+     * @param profile the exact profile of a local component, or the arrival profile of a
+     *                migrated one
+     * @throws IllegalArgumentException if no local component has that profile
+     * @throws IllegalStateException    on a dispatcher thread, if interrupted, or if the component
+     *                                  does not reach a message boundary in time
+     */
     public void remove(Profile profile) {
         await(removeAsync(profile), "remove", profile);
     }
 
-    /** The shell of a local component (exact profile or an unambiguous query). */
+    /**
+     * The shell of a local component.
+     *
+     * @param profile the exact profile of a local component, or a query that matches only it
+     * @return its shell
+     * @throws ProfileResolutionException if the profile does not resolve
+     * @throws IllegalArgumentException   if it resolves to a component of another node
+     */
     public Shell shell(Profile profile) {
         return core.shell(profile);
     }
 
-    /** The registered local components, in registration order. */
+    /** {@return the registered local components, in registration order: a copy taken now} */
     public List<Shell> shells() {
         return core.shells();
     }
 
+    /** {@return whether the node has started and has not begun to close} */
     public boolean isRunning() {
         return core.isRunning();
     }
 
+    /** {@return whether the node has finished closing} */
     public boolean isClosed() {
         return core.isClosed();
     }
 
-    /** Closes the node on a new thread (usable from a component); completes when it is closed. */
+    /**
+     * Closes the node on a new thread, so a component may call it. Does nothing more if the node
+     * is already closing.
+     *
+     * @return a future that completes when the node is closed
+     */
     public CompletableFuture<Void> closeAsync() {
         return core.closeAsync();
     }
 
-    /** Completes when the node has closed, whoever closed it (escalation may). */
+    /**
+     * {@return a future that completes when the node has closed, whoever closed it (escalation
+     * may)}
+     */
     public CompletableFuture<Void> closedFuture() {
         return core.closedFuture();
     }
@@ -159,29 +215,72 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
 
     // ---------------------------------------------------------------- messaging from outside
 
-    /** Sends best-effort contents from outside any component (no sender). */
+    /**
+     * Sends best-effort contents from outside any component (no sender).
+     *
+     * @param to       the receiver: an exact profile or a query matching exactly one component
+     * @param contents the payload, a registered record
+     * @return the id of the message sent
+     * @throws IllegalStateException if the node was never started
+     */
     public MessageId send(Profile to, Contents contents) {
         return send(to, contents, QoS.NONE);
     }
 
-    /** Sends contents from outside any component (no sender: nobody gets a notice if it is lost). */
+    /**
+     * Sends contents from outside any component (no sender: nobody gets a notice if it is lost).
+     *
+     * @param to       the receiver: an exact profile or a query matching exactly one component
+     * @param contents the payload, a registered record
+     * @param qos      the delivery requirements; {@link QoS#NONE} for best effort
+     * @return the id of the message sent
+     * @throws IllegalStateException if the node was never started
+     */
     public MessageId send(Profile to, Contents contents, QoS qos) {
         MessageId id = core.newMessageId();
         core.send(new Message(to, null, core.clock().epochNanos(), qos, contents, id, null));
         return id;
     }
 
-    /** A request from outside with the default timeout; see {@link Kernel#request}. */
+    /**
+     * A best-effort request from outside with the default timeout; see {@link Kernel#request}.
+     *
+     * @param to       the responder: an exact profile or a query matching exactly one component
+     * @param contents the request's payload, a registered record
+     * @return the future reply; it fails with
+     *         {@link io.etherware.core.component.RequestFailedException}
+     * @throws IllegalStateException if the node was never started or is closed
+     */
     public CompletableFuture<Message> request(Profile to, Contents contents) {
         return request(to, contents, QoS.NONE, core.config().defaultRequestTimeoutNs());
     }
 
-    /** A request from outside; the node's {@link #profile()} is its sender. */
+    /**
+     * A request from outside; the node's {@link #profile()} is its sender.
+     *
+     * @param to        the responder: an exact profile or a query matching exactly one component
+     * @param contents  the request's payload, a registered record
+     * @param qos       the delivery requirements of the request
+     * @param timeoutNs how long to wait for the reply, in nanoseconds; &gt; 0
+     * @return the future reply; it fails with
+     *         {@link io.etherware.core.component.RequestFailedException}
+     * @throws IllegalArgumentException if {@code timeoutNs} is not positive
+     * @throws IllegalStateException    if the node was never started or is closed
+     */
     public CompletableFuture<Message> request(Profile to, Contents contents, QoS qos, long timeoutNs) {
         return core.request(outsideMessage(to, contents, qos), timeoutNs);
     }
 
-    /** A blocking request from outside with the default timeout. */
+    /**
+     * A best-effort blocking request from outside with the default timeout.
+     *
+     * @param to       the responder: an exact profile or a query matching exactly one component
+     * @param contents the request's payload, a registered record
+     * @return the reply
+     * @throws io.etherware.core.component.RequestFailedException if no reply comes
+     * @throws IllegalStateException on a dispatcher thread, or if the node was never started or
+     *                               is closed
+     */
     public Message requestBlocking(Profile to, Contents contents) {
         return requestBlocking(to, contents, QoS.NONE, core.config().defaultRequestTimeoutNs());
     }
@@ -189,8 +288,15 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
     /**
      * A blocking request from outside.
      *
+     * @param to        the responder: an exact profile or a query matching exactly one component
+     * @param contents  the request's payload, a registered record
+     * @param qos       the delivery requirements of the request
+     * @param timeoutNs how long to wait for the reply, in nanoseconds; &gt; 0
+     * @return the reply
      * @throws io.etherware.core.component.RequestFailedException if no reply comes
-     * @throws IllegalStateException on a dispatcher thread
+     * @throws IllegalArgumentException if {@code timeoutNs} is not positive
+     * @throws IllegalStateException on a dispatcher thread, or if the node was never started or
+     *                               is closed
      */
     public Message requestBlocking(Profile to, Contents contents, QoS qos, long timeoutNs) {
         return core.requestBlocking(outsideMessage(to, contents, qos), timeoutNs);
@@ -202,7 +308,15 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
 
     // ---------------------------------------------------------------- management, blocking forms
 
-    /** {@link #holdAsync} and wait for the component's message boundary. */
+    /**
+     * {@link #holdAsync} and wait for the component's message boundary.
+     *
+     * @param profile the exact profile of a local component, or a query that matches only it
+     * @throws ProfileResolutionException if the profile does not resolve
+     * @throws IllegalArgumentException   if it resolves to a component of another node
+     * @throws IllegalStateException      on a dispatcher thread, if interrupted, or if the
+     *                                    component does not reach a message boundary in time
+     */
     public void hold(Profile profile) {
         await(holdAsync(profile), "hold", profile);
     }
@@ -210,7 +324,13 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
     /**
      * {@link #swapAsync} and wait.
      *
-     * @throws IllegalStateException carrying the error if the swap was rolled back
+     * @param profile the exact profile of a local component, or a query that matches only it
+     * @param factory makes the new logic now and for the component's later restarts
+     * @throws ProfileResolutionException if the profile does not resolve
+     * @throws IllegalArgumentException   if it resolves to a component of another node
+     * @throws IllegalStateException      carrying the error if the swap was rolled back; also on a
+     *                                    dispatcher thread, if interrupted, or if the component
+     *                                    does not reach a message boundary in time
      */
     public void swap(Profile profile, Supplier<? extends Component> factory) {
         await(swapAsync(profile, factory), "swap", profile);
@@ -321,7 +441,7 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
         return core.stats();
     }
 
-    /** The node's scheduler (e.g. to learn the priorities of its dispatchers). */
+    /** {@return the node's scheduler (e.g. to learn the priorities of its dispatchers)} */
     public Scheduler scheduler() {
         return core.scheduler();
     }
@@ -346,48 +466,109 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
         Builder() {
         }
 
+        /**
+         * This node's id; default {@code node}.
+         *
+         * @param value an id unique in the system that matches
+         *              {@link io.etherware.core.message.Profile#NAME_PATTERN} (checked by
+         *              {@link #build()})
+         * @return this builder
+         */
         public Builder nodeId(String value) {
             config.nodeId(value);
             return this;
         }
 
+        /**
+         * The factory of the node's scheduler; default {@code FifoScheduler::new}.
+         *
+         * @param value makes a new, unstarted scheduler; called once, by {@link #build()}
+         * @return this builder
+         */
         public Builder scheduler(Supplier<? extends Scheduler> value) {
             config.scheduler(value);
             return this;
         }
 
+        /**
+         * The node's clock; default {@link NodeClock#system()}. Tests inject a manual one.
+         *
+         * @param value the clock of message time stamps and dispatching
+         * @return this builder
+         */
         public Builder clock(NodeClock value) {
             config.clock(value);
             return this;
         }
 
+        /**
+         * The restart policy of components added without their own; default
+         * {@link SupervisionPolicy#DEFAULT}.
+         *
+         * @param value the policy
+         * @return this builder
+         */
         public Builder supervision(SupervisionPolicy value) {
             config.supervision(value);
             return this;
         }
 
+        /**
+         * What the node does when a component exceeds its restart intensity; default
+         * {@link Escalation#RESET_ALL}.
+         *
+         * @param value the node's answer
+         * @return this builder
+         */
         public Builder escalation(Escalation value) {
             config.escalation(value);
             return this;
         }
 
+        /**
+         * Timeout of requests made without one; default 1 s.
+         *
+         * @param value positive (checked by {@link #build()})
+         * @return this builder
+         * @throws IllegalArgumentException if it is too long to count in nanoseconds
+         */
         public Builder defaultRequestTimeout(Duration value) {
             config.defaultRequestTimeout(value);
             return this;
         }
 
+        /**
+         * How long {@link EtherwareNode#close()} lets queued messages be delivered before it
+         * discards (and counts) the rest; default 1 s.
+         *
+         * @param value zero or positive (checked by {@link #build()}); zero discards at once
+         * @return this builder
+         * @throws IllegalArgumentException if it is too long to count in nanoseconds
+         */
         public Builder drainTimeout(Duration value) {
             config.drainTimeout(value);
             return this;
         }
 
-        /** See {@link NodeConfig.Builder#contentsTypes(ContentsTypes)}. */
+        /**
+         * The node's registry of contents types; see {@link NodeConfig.Builder#contentsTypes(ContentsTypes)}.
+         *
+         * @param value the registry, not null
+         * @return this builder
+         */
         public Builder contentsTypes(ContentsTypes value) {
             config.contentsTypes(value);
             return this;
         }
 
-        /** The node, configured and validated, not started. */
+        /**
+         * Validates the settings and creates the node, not started.
+         *
+         * @return the node
+         * @throws IllegalArgumentException naming the setting, its value and a fix if one is out of
+         *                                  range
+         * @throws NullPointerException     naming the setting if a required one was set to null
+         */
         public EtherwareNode build() {
             return new EtherwareNode(config.build());
         }

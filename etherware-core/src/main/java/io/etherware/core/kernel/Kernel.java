@@ -27,22 +27,22 @@ import java.util.function.Supplier;
  */
 public interface Kernel {
 
-    /** This node's id. */
+    /** {@return this node's id, unique in the system and the node part of its message ids} */
     String nodeId();
 
     /**
-     * The node's own profile, {@code etherware.node[id=<nodeId>]}: the sender of requests made
-     * from outside any component, so replies find their way back across nodes.
+     * {@return the node's own profile, {@code etherware.node[id=<nodeId>]}} It is the sender of
+     * requests made from outside any component, so replies find their way back across nodes.
      */
     Profile profile();
 
-    /** The node's clock. */
+    /** {@return the node's clock, which time-stamps its messages and drives its dispatchers} */
     NodeClock clock();
 
-    /** The profile registry. */
+    /** {@return the profile registry, where transports register their remote routes} */
     ProfileRegistry registry();
 
-    /** A new message id of this node. */
+    /** {@return a new message id of this node, never returned before while it runs} Lock-free. */
     MessageId newMessageId();
 
     /**
@@ -51,6 +51,7 @@ public interface Kernel {
      * {@link Undeliverable} notice (a request's future fails), and a counter moves. A reply to a
      * pending request of this node completes that request instead.
      *
+     * @param message the message; its profile may be an exact profile or a query
      * @throws IllegalStateException if the node was never started
      */
     void send(Message message);
@@ -60,6 +61,13 @@ public interface Kernel {
      * {@link #profile()} is used. The future completes on a kernel thread (use the
      * {@code ...Async} continuations for long work) and fails with
      * {@link io.etherware.core.component.RequestFailedException}.
+     *
+     * @param request   the request, with a new id of this node
+     * @param timeoutNs how long to wait for the reply, in nanoseconds; &gt; 0
+     * @return the future reply
+     * @throws IllegalArgumentException if {@code timeoutNs} is not positive, or a request with the
+     *                                  same id is still waiting
+     * @throws IllegalStateException    if the node was never started or is closed
      */
     CompletableFuture<Message> request(Message request, long timeoutNs);
 
@@ -69,13 +77,21 @@ public interface Kernel {
      * that boundary and will not run until {@link #release}. Holding a held component completes
      * at once (holds do not nest).
      *
-     * @throws ProfileResolutionException if no local component has exactly this profile
+     * @param profile the exact profile of a local component, or a query that matches only it
+     * @return a future that completes at the boundary: at once on the calling thread if the
+     *         component is idle, else on the dispatcher thread that ends its current handling
+     * @throws ProfileResolutionException if the profile does not resolve
+     * @throws IllegalArgumentException   if it resolves to a component of another node
      */
     CompletableFuture<Void> holdAsync(Profile profile);
 
     /**
      * Ends a hold: the messages kept meanwhile are delivered, in order, exactly once. Does
      * nothing for a component that is not held.
+     *
+     * @param profile the exact profile of a local component, or a query that matches only it
+     * @throws ProfileResolutionException if the profile does not resolve
+     * @throws IllegalArgumentException   if it resolves to a component of another node
      */
     void release(Profile profile);
 
@@ -84,6 +100,14 @@ public interface Kernel {
      * instance from {@code factory}, {@code restore(state)}, {@code onStart}, swap, then the old
      * logic's {@code onStop}. If {@code restore} or {@code onStart} throws, the old logic stays
      * and the future fails with that error. The factory is also used for later restarts.
+     *
+     * @param profile the exact profile of a local component, or a query that matches only it
+     * @param factory makes the new logic now and for the component's later restarts
+     * @return a future that completes once the new logic is in place, or fails with the error of
+     *         {@code restore} or {@code onStart}, or with an {@link IllegalStateException} if the
+     *         component was not running
+     * @throws ProfileResolutionException if the profile does not resolve
+     * @throws IllegalArgumentException   if it resolves to a component of another node
      */
     CompletableFuture<Void> swapAsync(Profile profile, Supplier<? extends Component> factory);
 
@@ -99,6 +123,14 @@ public interface Kernel {
      *
      * <p>The default implementation, for kernels that do not time swaps, swaps and reports
      * {@link SwapTimings#UNMEASURED}; it never calls {@code onFirstHandling}.
+     *
+     * @param profile         the exact profile of a local component, or a query matching only it
+     * @param factory         makes the new logic now and for the component's later restarts
+     * @param onFirstHandling receives the start time of the new logic's first handling, in
+     *                        nanoseconds of the node's monotonic clock
+     * @return a future of the pause's timings, failing as {@link #swapAsync(Profile, Supplier)}'s
+     * @throws ProfileResolutionException if the profile does not resolve
+     * @throws IllegalArgumentException   if it resolves to a component of another node
      */
     default CompletableFuture<SwapTimings> swapAsync(Profile profile, Supplier<? extends Component> factory,
                                                      LongConsumer onFirstHandling) {
@@ -108,6 +140,12 @@ public interface Kernel {
     /**
      * The state of a local component at its next message boundary ({@link Component#snapshot()},
      * possibly null). On a held component it is the state that a migration ships.
+     *
+     * @param profile the exact profile of a local component, or a query that matches only it
+     * @return a future of the state (null for a stateless component), failing with what
+     *         {@code snapshot()} threw
+     * @throws ProfileResolutionException if the profile does not resolve
+     * @throws IllegalArgumentException   if it resolves to a component of another node
      */
     CompletableFuture<ComponentState> snapshotAsync(Profile profile);
 
@@ -120,6 +158,11 @@ public interface Kernel {
      * overtakes an earlier one of the same sender and urgency.
      *
      * @param profile the exact profile of a local component
+     * @param route   the way to the node that takes the component over
+     * @return a future that completes once the profile points at {@code route}
+     * @throws ProfileResolutionException if the profile does not resolve
+     * @throws IllegalArgumentException   if it is a query, or belongs to a component of another
+     *                                    node
      */
     CompletableFuture<Void> relocateAsync(Profile profile, RemoteRoute route);
 
@@ -139,9 +182,16 @@ public interface Kernel {
      * <p>The default implementation, for kernels that cannot host migrated components, throws
      * {@link UnsupportedOperationException}.
      *
+     * @param profile         the component's exact profile, as on its source node
+     * @param arrival         a profile of its own, to which the source forwards messages
+     * @param factory         makes the instance, the first one already holding the migrated state,
+     *                        and new ones for later restarts
+     * @param onFirstHandling receives the start time of the first handled message, in
+     *                        nanoseconds of the node's monotonic clock
      * @return the component's shell; if its {@code onStart} threw it is FAILED (remove it)
-     * @throws IllegalArgumentException if either profile is registered to a local component
-     * @throws IllegalStateException    if the node does not run
+     * @throws IllegalArgumentException      if either profile is registered to a local component
+     * @throws IllegalStateException         if the node does not run
+     * @throws UnsupportedOperationException if this kernel cannot host migrated components
      */
     default Shell addHeld(Profile profile, Profile arrival, Supplier<? extends Component> factory,
                           LongConsumer onFirstHandling) {
@@ -155,7 +205,11 @@ public interface Kernel {
      * how many it forwarded, because its request to admit may overtake some of them on the way.
      * {@code arrival} stays registered for messages still on their way through the source.
      *
-     * @throws IllegalArgumentException if no migrated component arrived as {@code arrival}
+     * @param arrival        the arrival profile given to {@link #addHeld}
+     * @param forwardedCount how many messages the source forwarded to {@code arrival}; &gt;= 0
+     * @throws IllegalArgumentException      if no migrated component arrived as {@code arrival}
+     * @throws UnsupportedOperationException if this kernel cannot host migrated components (the
+     *                                       default implementation)
      */
     default void admit(Profile arrival, long forwardedCount) {
         throw new UnsupportedOperationException(getClass().getName() + " cannot host migrated components");
@@ -166,12 +220,18 @@ public interface Kernel {
      * unregistered at once, stopped at its next message boundary; the messages that waited for it
      * (also those kept by a hold) are resolved anew. The default implementation throws
      * {@link UnsupportedOperationException}.
+     *
+     * @param profile the exact profile of a local component, or the arrival profile of a
+     *                migrated one
+     * @return a future that completes once the component has stopped (at once if it never started)
+     * @throws IllegalArgumentException      if no local component has that profile
+     * @throws UnsupportedOperationException if this kernel cannot remove components
      */
     default CompletableFuture<Void> removeAsync(Profile profile) {
         throw new UnsupportedOperationException(getClass().getName() + " cannot remove components");
     }
 
-    /** The node's counters now. */
+    /** {@return the node's counters now, each exact but not read atomically together} */
     NodeStats stats();
 
     /**
@@ -188,6 +248,10 @@ public interface Kernel {
      * {@link io.etherware.core.message.Origin#wireBytes()}) and wait in this node's queues, not
      * yet handled or passed on: what a peer has made this node hold, so the network layer can
      * stop reading from a peer that floods it. The default implementation does not count.
+     *
+     * @param viaNodeId the peer whose connection delivered them, their
+     *                  {@link io.etherware.core.message.Origin#viaNodeId()}
+     * @return the bytes, &gt;= 0; 0 if none wait or the kernel does not count
      */
     default long queuedBytesFrom(String viaNodeId) {
         return 0;

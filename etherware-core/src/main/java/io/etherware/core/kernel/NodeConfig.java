@@ -32,6 +32,14 @@ public record NodeConfig(String nodeId, Supplier<? extends Scheduler> scheduler,
                          SupervisionPolicy supervision, Escalation escalation, long defaultRequestTimeoutNs,
                          long drainTimeoutNs, ContentsTypes contentsTypes) {
 
+    /**
+     * Validates the configuration.
+     *
+     * @throws IllegalArgumentException naming the field, its value and a fix if {@code nodeId} is
+     *                                  missing or malformed, or a timeout is out of range
+     * @throws NullPointerException     naming the field and a fix if the scheduler factory, clock,
+     *                                  supervision or escalation is null
+     */
     public NodeConfig {
         if (nodeId == null || !Profile.isName(nodeId)) {
             throw new IllegalArgumentException("nodeId=" + (nodeId == null ? "null" : "'" + nodeId + "'")
@@ -52,7 +60,7 @@ public record NodeConfig(String nodeId, Supplier<? extends Scheduler> scheduler,
         Objects.requireNonNull(contentsTypes, "contentsTypes=null: leave the default (a new registry) or give one");
     }
 
-    /** A builder holding the defaults. */
+    /** {@return a builder holding the defaults} */
     public static Builder builder() {
         return new Builder();
     }
@@ -76,36 +84,85 @@ public record NodeConfig(String nodeId, Supplier<? extends Scheduler> scheduler,
         Builder() {
         }
 
+        /**
+         * This node's id; default {@code node}.
+         *
+         * @param value an id unique in the system that matches {@link Profile#NAME_PATTERN}
+         *              (checked by {@link #build()})
+         * @return this builder
+         */
         public Builder nodeId(String value) {
             nodeId = value;
             return this;
         }
 
+        /**
+         * The factory of the node's scheduler; default {@code FifoScheduler::new}.
+         *
+         * @param value makes a new, unstarted scheduler each time a node is created from the
+         *              configuration
+         * @return this builder
+         */
         public Builder scheduler(Supplier<? extends Scheduler> value) {
             scheduler = value;
             return this;
         }
 
+        /**
+         * The node's clock; default {@link NodeClock#system()}. Tests inject a manual one.
+         *
+         * @param value the clock of message time stamps and dispatching
+         * @return this builder
+         */
         public Builder clock(NodeClock value) {
             clock = value;
             return this;
         }
 
+        /**
+         * The restart policy of components added without their own; default
+         * {@link SupervisionPolicy#DEFAULT}.
+         *
+         * @param value the policy
+         * @return this builder
+         */
         public Builder supervision(SupervisionPolicy value) {
             supervision = value;
             return this;
         }
 
+        /**
+         * What the node does when a component exceeds its restart intensity; default
+         * {@link Escalation#RESET_ALL}.
+         *
+         * @param value the node's answer
+         * @return this builder
+         */
         public Builder escalation(Escalation value) {
             escalation = value;
             return this;
         }
 
+        /**
+         * Timeout of requests made without one; default 1 s.
+         *
+         * @param value positive (checked by {@link #build()})
+         * @return this builder
+         * @throws IllegalArgumentException if it is too long to count in nanoseconds
+         */
         public Builder defaultRequestTimeout(Duration value) {
             defaultRequestTimeoutNs = SupervisionPolicy.toNs("defaultRequestTimeout", value);
             return this;
         }
 
+        /**
+         * How long {@code close()} lets queued messages be delivered before it discards (and
+         * counts) the rest; default 1 s.
+         *
+         * @param value zero or positive (checked by {@link #build()}); zero discards at once
+         * @return this builder
+         * @throws IllegalArgumentException if it is too long to count in nanoseconds
+         */
         public Builder drainTimeout(Duration value) {
             drainTimeoutNs = SupervisionPolicy.toNs("drainTimeout", value);
             return this;
@@ -115,13 +172,24 @@ public record NodeConfig(String nodeId, Supplier<? extends Scheduler> scheduler,
          * The node's contents types, with the application's registered, e.g.
          * {@code contentsTypes(new ContentsTypes().register("reading", Reading.class))}; default a new
          * registry. A registry may be shared by the nodes of one process that carry the same types.
+         *
+         * @param value the registry, not null
+         * @return this builder
+         * @throws NullPointerException if {@code value} is null
          */
         public Builder contentsTypes(ContentsTypes value) {
             contentsTypes = Objects.requireNonNull(value, "contentsTypes=null: leave the default or give a registry");
             return this;
         }
 
-        /** The validated configuration. */
+        /**
+         * Validates the settings.
+         *
+         * @return the configuration
+         * @throws IllegalArgumentException naming the setting, its value and a fix if one is out of
+         *                                  range
+         * @throws NullPointerException     naming the setting if a required one was set to null
+         */
         public NodeConfig build() {
             return new NodeConfig(nodeId, scheduler, clock, supervision, escalation, defaultRequestTimeoutNs,
                     drainTimeoutNs, contentsTypes != null ? contentsTypes : new ContentsTypes());

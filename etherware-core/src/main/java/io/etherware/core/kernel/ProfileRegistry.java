@@ -19,19 +19,23 @@ import java.util.Set;
 public interface ProfileRegistry {
 
     /**
-     * The endpoint for {@code profile}.
+     * The endpoint for {@code profile}. Lock-free.
      *
+     * @param profile an exact profile, or a query that must match exactly one registered profile
+     * @return the local component or the remote route it stands for
      * @throws ProfileResolutionException if nothing matches or a query matches several profiles;
      *                                    the message names the candidates
      */
     Endpoint resolve(Profile profile);
 
-    /** The registered profiles, local and remote. */
+    /** {@return the registered profiles, local and remote: an unmodifiable copy taken now} */
     Set<Profile> profiles();
 
     /**
      * Registers a route to a profile hosted on another node.
      *
+     * @param profile the exact profile of the remote component
+     * @param route   the transport's way to it
      * @throws IllegalArgumentException if the profile is already registered
      */
     void registerRemote(Profile profile, RemoteRoute route);
@@ -39,6 +43,7 @@ public interface ProfileRegistry {
     /**
      * Removes a remote route.
      *
+     * @param profile the exact profile the route was registered for
      * @return whether a remote route was registered for the profile
      * @throws IllegalArgumentException if the profile belongs to a local component
      */
@@ -47,10 +52,17 @@ public interface ProfileRegistry {
     /**
      * Adds a listener told of every later change of the registry. A transport uses it to announce
      * the profiles its node hosts when they change.
+     *
+     * @param listener told of each change from now on, on the thread that makes it
      */
     void addListener(Listener listener);
 
-    /** Removes a listener; returns whether it was registered. */
+    /**
+     * Removes a listener; it is told of no change after this returns.
+     *
+     * @param listener a listener given to {@link #addListener}
+     * @return whether it was registered
+     */
     boolean removeListener(Listener listener);
 
     /**
@@ -66,7 +78,13 @@ public interface ProfileRegistry {
     @FunctionalInterface
     interface Listener {
 
-        /** {@code profile} went from {@code before} to {@code after}; either may be null. */
+        /**
+         * {@code profile} went from {@code before} to {@code after}.
+         *
+         * @param profile the exact profile that changed
+         * @param before  its endpoint until now, or null if it was not registered
+         * @param after   its endpoint from now on, or null if it was removed
+         */
         void onChanged(Profile profile, Endpoint before, Endpoint after);
     }
 }

@@ -14,7 +14,13 @@ import io.etherware.core.message.Message;
 @FunctionalInterface
 public interface RemoteRoute {
 
-    /** Takes the message for transmission. Must not block. */
+    /**
+     * Takes the message for transmission. Must not block.
+     *
+     * @param message the message for a profile this route was registered for
+     * @throws RuntimeException any, if the message cannot be taken; the kernel counts it as
+     *                          undeliverable and tells its sender
+     */
     void deliver(Message message);
 
     /**
@@ -22,6 +28,10 @@ public interface RemoteRoute {
      * waiting to take a profile over): a reply from the network to a request sent along this route
      * is taken only from such a node, so no third node can answer or fail another's requests. The
      * default, for routes that do not know their nodes, accepts any.
+     *
+     * @param nodeId the node that made a reply: its
+     *               {@link io.etherware.core.message.Origin#nodeId() origin's node id}
+     * @return whether a reply from that node may answer a request sent along this route
      */
     default boolean isServedBy(String nodeId) {
         return true;

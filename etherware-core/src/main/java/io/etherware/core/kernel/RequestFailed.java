@@ -12,6 +12,11 @@ import java.util.Objects;
  * @param reason    the exception the responder threw: its class and message
  */
 public record RequestFailed(String requestId, String responder, String reason) implements Contents {
+    /**
+     * Checks that every component is given.
+     *
+     * @throws NullPointerException if a component is null
+     */
     public RequestFailed {
         Objects.requireNonNull(requestId, "requestId");
         Objects.requireNonNull(responder, "responder");

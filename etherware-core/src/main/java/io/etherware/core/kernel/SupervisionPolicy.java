@@ -38,6 +38,13 @@ public record SupervisionPolicy(Restart restart, int maxRestarts, long windowNs)
     /** The default: restart from the last snapshot, at most 3 times in 5 seconds. */
     public static final SupervisionPolicy DEFAULT = fromSnapshot(3, Duration.ofSeconds(5));
 
+    /**
+     * Checks the components.
+     *
+     * @throws IllegalArgumentException naming the field if {@code maxRestarts} is outside
+     *                                  [0, {@link #MAX_RESTARTS_LIMIT}] or {@code windowNs} is not
+     *                                  positive
+     */
     public SupervisionPolicy {
         Objects.requireNonNull(restart, "restart");
         if (maxRestarts < 0 || maxRestarts > MAX_RESTARTS_LIMIT) {
@@ -48,17 +55,33 @@ public record SupervisionPolicy(Restart restart, int maxRestarts, long windowNs)
         }
     }
 
-    /** Restart from the last snapshot, at most {@code maxRestarts} times within {@code window}. */
+    /**
+     * Restart from the last snapshot, at most {@code maxRestarts} times within {@code window}.
+     *
+     * @param maxRestarts restarts allowed within the window, 0 to {@link #MAX_RESTARTS_LIMIT}
+     * @param window      the sliding window of the limit; positive
+     * @return the policy
+     * @throws IllegalArgumentException if {@code maxRestarts} is out of range, or {@code window} is
+     *                                  not positive or too long to count in nanoseconds
+     */
     public static SupervisionPolicy fromSnapshot(int maxRestarts, Duration window) {
         return new SupervisionPolicy(Restart.FROM_SNAPSHOT, maxRestarts, toNs("window", window));
     }
 
-    /** Restart fresh, at most {@code maxRestarts} times within {@code window}. */
+    /**
+     * Restart fresh, at most {@code maxRestarts} times within {@code window}.
+     *
+     * @param maxRestarts restarts allowed within the window, 0 to {@link #MAX_RESTARTS_LIMIT}
+     * @param window      the sliding window of the limit; positive
+     * @return the policy
+     * @throws IllegalArgumentException if {@code maxRestarts} is out of range, or {@code window} is
+     *                                  not positive or too long to count in nanoseconds
+     */
     public static SupervisionPolicy fresh(int maxRestarts, Duration window) {
         return new SupervisionPolicy(Restart.FRESH, maxRestarts, toNs("window", window));
     }
 
-    /** Never restart: the first failure stops the component. */
+    /** {@return a policy that never restarts: the first failure stops the component} */
     public static SupervisionPolicy stop() {
         return new SupervisionPolicy(Restart.STOP, 0, 1);
     }

@@ -24,7 +24,10 @@ public record SwapTimings(long lastOldHandlingEndNs, long swapStartNs, long swap
     /** What a kernel that does not time swaps reports. */
     public static final SwapTimings UNMEASURED = new SwapTimings(UNKNOWN_NS, UNKNOWN_NS, UNKNOWN_NS, -1);
 
-    /** How long the component was paused at its boundary, or {@link #UNKNOWN_NS}. */
+    /**
+     * {@return how long the component was paused at its boundary, in nanoseconds
+     * ({@code swapEndNs - swapStartNs}), or {@link #UNKNOWN_NS} if either end is unknown}
+     */
     public long pauseNs() {
         return swapStartNs == UNKNOWN_NS || swapEndNs == UNKNOWN_NS ? UNKNOWN_NS : swapEndNs - swapStartNs;
     }

@@ -13,6 +13,11 @@ import java.util.Objects;
  * @param reason    why, e.g. no matching component, an ambiguous query with its candidates
  */
 public record Undeliverable(String profile, String messageId, String reason) implements Contents {
+    /**
+     * Checks that every component is given.
+     *
+     * @throws NullPointerException if a component is null
+     */
     public Undeliverable {
         Objects.requireNonNull(profile, "profile");
         Objects.requireNonNull(messageId, "messageId");

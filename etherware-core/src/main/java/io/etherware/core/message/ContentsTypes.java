@@ -110,7 +110,11 @@ public final class ContentsTypes {
                 + (publicAllTheWay ? "" : " (or make the record public in an exported package)"));
     }
 
-    /** The record type registered under {@code name}, or null. */
+    /**
+     * {@return the record type registered under {@code name}, or null if there is none}
+     *
+     * @param name a wire name
+     */
     public Class<? extends Contents> typeOf(String name) {
         return byName.get(name);
     }
@@ -118,6 +122,8 @@ public final class ContentsTypes {
     /**
      * The wire name of {@code type}.
      *
+     * @param type a contents record class
+     * @return the name it was registered under
      * @throws MessageFormatException if the type was never registered
      */
     public String nameOf(Class<? extends Contents> type) {
@@ -129,12 +135,16 @@ public final class ContentsTypes {
         return name;
     }
 
-    /** Whether {@code type} has a wire name. */
+    /**
+     * {@return whether {@code type} has a wire name}
+     *
+     * @param type a contents record class
+     */
     public boolean isRegistered(Class<? extends Contents> type) {
         return byType.containsKey(type);
     }
 
-    /** The registered names, sorted. */
+    /** {@return the registered names, sorted; a copy, unaffected by later registrations} */
     public Set<String> names() {
         return new TreeSet<>(byName.keySet());
     }

@@ -10,7 +10,10 @@ package io.etherware.core.message;
 public enum Criticality {
     /** No real-time requirement; delivered by the non-real-time dispatcher. */
     NONE,
+    /** Real-time, least critical; a real-time scheduler serves it after the others. */
     LOW,
+    /** Real-time, between {@link #LOW} and {@link #HIGH}. */
     MIDDLE,
+    /** Real-time, most critical, e.g. a control loop; a real-time scheduler serves it first. */
     HIGH
 }

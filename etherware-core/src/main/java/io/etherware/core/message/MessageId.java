@@ -11,6 +11,12 @@ import java.util.Objects;
  */
 public record MessageId(String nodeId, long sequence) {
 
+    /**
+     * Checks the node id and the sequence.
+     *
+     * @throws IllegalArgumentException if {@code nodeId} does not match
+     *                                  {@link Profile#NAME_PATTERN} or {@code sequence} is negative
+     */
     public MessageId {
         Objects.requireNonNull(nodeId, "nodeId");
         if (!Profile.isName(nodeId)) {
@@ -21,7 +27,14 @@ public record MessageId(String nodeId, long sequence) {
         }
     }
 
-    /** Parses {@code node#sequence}, the form {@link #toString()} produces. */
+    /**
+     * Parses {@code node#sequence}, the form {@link #toString()} produces.
+     *
+     * @param text the text form
+     * @return the id it names
+     * @throws IllegalArgumentException naming the text if it is not of that form, its node id is
+     *                                  malformed or its sequence is not a number &gt;= 0
+     */
     public static MessageId parse(String text) {
         Objects.requireNonNull(text, "text");
         int hash = text.lastIndexOf('#');

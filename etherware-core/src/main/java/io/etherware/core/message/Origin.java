@@ -25,6 +25,12 @@ import java.util.Objects;
  */
 public record Origin(String nodeId, String viaNodeId, int hops, boolean authenticated, int wireBytes) {
 
+    /**
+     * Checks the components.
+     *
+     * @throws IllegalArgumentException if {@code hops} or {@code wireBytes} is negative, or
+     *                                  {@code hops} is 0 and the two node ids differ
+     */
     public Origin {
         Objects.requireNonNull(nodeId, "nodeId");
         Objects.requireNonNull(viaNodeId, "viaNodeId");
@@ -40,17 +46,31 @@ public record Origin(String nodeId, String viaNodeId, int hops, boolean authenti
         }
     }
 
-    /** An origin whose size is not counted. */
+    /**
+     * An origin whose size is not counted ({@code wireBytes} 0).
+     *
+     * @param nodeId        the node that created the message
+     * @param viaNodeId     the authenticated node whose connection delivered it
+     * @param hops          how many nodes relayed it, &gt;= 0
+     * @param authenticated whether the connection authenticated its peer
+     * @throws IllegalArgumentException if {@code hops} is negative, or 0 while the node ids differ
+     */
     public Origin(String nodeId, String viaNodeId, int hops, boolean authenticated) {
         this(nodeId, viaNodeId, hops, authenticated, 0);
     }
 
-    /** A message received directly from {@code nodeId}. */
+    /**
+     * A message received directly from the node that made it, size not counted.
+     *
+     * @param nodeId        the peer the connection is with
+     * @param authenticated whether the connection authenticated the peer
+     * @return an origin with no hops
+     */
     public static Origin direct(String nodeId, boolean authenticated) {
         return new Origin(nodeId, nodeId, 0, authenticated);
     }
 
-    /** Whether the message came straight from the node that made it. */
+    /** {@return whether the message came straight from the node that made it} */
     public boolean isDirect() {
         return hops == 0;
     }

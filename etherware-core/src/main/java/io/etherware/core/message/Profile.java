@@ -29,6 +29,12 @@ public record Profile(String role, SequencedMap<String, String> attributes) {
     private static final Pattern NAME = Pattern.compile(NAME_PATTERN);
     private static final Pattern VALUE = Pattern.compile(VALUE_PATTERN);
 
+    /**
+     * Checks the role and every attribute, and keeps an unmodifiable copy of the attributes.
+     *
+     * @throws IllegalArgumentException naming the part if the role, a key or a value does not
+     *                                  match its pattern
+     */
     public Profile {
         Objects.requireNonNull(role, "role");
         Objects.requireNonNull(attributes, "attributes");
@@ -49,12 +55,26 @@ public record Profile(String role, SequencedMap<String, String> attributes) {
         attributes = Collections.unmodifiableSequencedMap(copy);
     }
 
-    /** A profile with a role and no attributes. */
+    /**
+     * A profile with a role and no attributes.
+     *
+     * @param role the role; must match {@link #NAME_PATTERN}
+     * @return the profile {@code role}
+     * @throws IllegalArgumentException if the role is malformed
+     */
     public static Profile of(String role) {
         return new Profile(role, new LinkedHashMap<>());
     }
 
-    /** A profile from a role and alternating keys and values: {@code of("controller", "car", "1")}. */
+    /**
+     * A profile from a role and alternating keys and values: {@code of("controller", "car", "1")}.
+     *
+     * @param role          the role; must match {@link #NAME_PATTERN}
+     * @param keysAndValues an even number of strings: key, value, key, value, in display order
+     * @return the profile
+     * @throws IllegalArgumentException if the strings are not pairs, a key is given twice, or a
+     *                                  part does not match its pattern
+     */
     public static Profile of(String role, String... keysAndValues) {
         if (keysAndValues.length % 2 != 0) {
             throw new IllegalArgumentException("Profile.of needs key/value pairs, got " + keysAndValues.length + " strings");
@@ -69,8 +89,11 @@ public record Profile(String role, SequencedMap<String, String> attributes) {
     }
 
     /**
-     * Parses the text form. Throws {@link IllegalArgumentException} naming the text and what is
-     * wrong with it.
+     * Parses the text form, {@code role} or {@code role[key=value,...]}.
+     *
+     * @param text the text form, as {@link #toString()} writes it
+     * @return the profile it describes
+     * @throws IllegalArgumentException naming the text and what is wrong with it
      */
     public static Profile parse(String text) {
         Objects.requireNonNull(text, "text");
@@ -106,7 +129,12 @@ public record Profile(String role, SequencedMap<String, String> attributes) {
         return new Profile(role, attributes);
     }
 
-    /** Whether {@code text} is a valid role, key or node id. */
+    /**
+     * {@return whether {@code text} matches {@link #NAME_PATTERN}, i.e. is a valid role, key or
+     * node id} Allocation-free, for checks on the per-message path.
+     *
+     * @param text the text to check; null is not a name
+     */
     public static boolean isName(String text) {
         // Same language as NAME_PATTERN, without a Matcher: MessageId checks its node id with
         // this on every message, so it must not allocate (136 bytes per call with the regex).
@@ -124,7 +152,14 @@ public record Profile(String role, SequencedMap<String, String> attributes) {
         return true;
     }
 
-    /** This profile with one more attribute (or a replaced value), appended at the end. */
+    /**
+     * {@return this profile with one more attribute (or a replaced value, which keeps its place)}
+     * A new attribute is appended at the end.
+     *
+     * @param key   the attribute key; must match {@link #NAME_PATTERN}
+     * @param value the attribute value; must match {@link #VALUE_PATTERN}
+     * @throws IllegalArgumentException if the key or the value is malformed
+     */
     public Profile with(String key, String value) {
         var copy = new LinkedHashMap<>(attributes);
         copy.put(key, value);
@@ -132,8 +167,10 @@ public record Profile(String role, SequencedMap<String, String> attributes) {
     }
 
     /**
-     * Whether this profile satisfies a query: same role, and every attribute of the query present
-     * here with the same value (this profile may have more).
+     * {@return whether this profile satisfies a query: same role, and every attribute of the query
+     * present here with the same value (this profile may have more)}
+     *
+     * @param query the profile used as a query
      */
     public boolean matches(Profile query) {
         if (!role.equals(query.role)) {

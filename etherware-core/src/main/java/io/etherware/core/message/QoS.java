@@ -19,6 +19,11 @@ public record QoS(Criticality criticality, long periodNs, long deadlineNs, long 
     /** Best effort: no criticality, no timing. The default for messages built without QoS. */
     public static final QoS NONE = new QoS(Criticality.NONE, 0, 0, 0);
 
+    /**
+     * Checks the components.
+     *
+     * @throws IllegalArgumentException naming the field if a duration is negative
+     */
     public QoS {
         Objects.requireNonNull(criticality, "criticality");
         requireNotNegative("periodNs", periodNs);
@@ -26,12 +31,24 @@ public record QoS(Criticality criticality, long periodNs, long deadlineNs, long 
         requireNotNegative("wcetNs", wcetNs);
     }
 
-    /** A QoS of the given criticality with no timing information. */
+    /**
+     * A QoS of the given criticality with no timing information.
+     *
+     * @param criticality how critical the delivery is
+     * @return the QoS; {@link #NONE} itself for {@link Criticality#NONE}
+     */
     public static QoS of(Criticality criticality) {
         return criticality == Criticality.NONE ? NONE : new QoS(criticality, 0, 0, 0);
     }
 
-    /** A periodic stream: period and implicit deadline equal to the period. */
+    /**
+     * A periodic stream: period and implicit deadline equal to the period, WCET unspecified.
+     *
+     * @param criticality how critical the stream is
+     * @param periodNs    the period in nanoseconds; &gt; 0
+     * @return the QoS
+     * @throws IllegalArgumentException if {@code periodNs} is not positive
+     */
     public static QoS periodic(Criticality criticality, long periodNs) {
         if (periodNs <= 0) {
             throw new IllegalArgumentException("periodNs=" + periodNs + " must be > 0 for a periodic QoS");
@@ -39,22 +56,37 @@ public record QoS(Criticality criticality, long periodNs, long deadlineNs, long 
         return new QoS(criticality, periodNs, periodNs, 0);
     }
 
+    /**
+     * {@return this QoS with another relative deadline}
+     *
+     * @param newDeadlineNs the deadline in nanoseconds after the release; 0 for none
+     * @throws IllegalArgumentException if it is negative
+     */
     public QoS withDeadlineNs(long newDeadlineNs) {
         return new QoS(criticality, periodNs, newDeadlineNs, wcetNs);
     }
 
+    /**
+     * {@return this QoS with another worst-case execution time}
+     *
+     * @param newWcetNs the receiver's worst-case handling time in nanoseconds; 0 for unspecified
+     * @throws IllegalArgumentException if it is negative
+     */
     public QoS withWcetNs(long newWcetNs) {
         return new QoS(criticality, periodNs, deadlineNs, newWcetNs);
     }
 
+    /** {@return whether a period is specified (non-zero)} */
     public boolean hasPeriod() {
         return periodNs > 0;
     }
 
+    /** {@return whether a deadline is specified (non-zero)} */
     public boolean hasDeadline() {
         return deadlineNs > 0;
     }
 
+    /** {@return whether a worst-case execution time is specified (non-zero)} */
     public boolean hasWcet() {
         return wcetNs > 0;
     }

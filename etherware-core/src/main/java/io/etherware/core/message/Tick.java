@@ -9,6 +9,11 @@ package io.etherware.core.message;
  * @param periodNs  the subscription's period, or 0 for a one-shot tick
  */
 public record Tick(long releaseNs, long sequence, long periodNs) implements Contents {
+    /**
+     * Checks the components.
+     *
+     * @throws IllegalArgumentException if {@code sequence} or {@code periodNs} is negative
+     */
     public Tick {
         if (sequence < 0) {
             throw new IllegalArgumentException("sequence=" + sequence + " must be >= 0");

@@ -41,7 +41,11 @@ public final class FifoScheduler implements Scheduler {
         this("etherware-fifo");
     }
 
-    /** A scheduler whose dispatcher thread has the given name. */
+    /**
+     * A scheduler whose dispatcher thread has the given name.
+     *
+     * @param threadName the dispatcher thread's name, as thread dumps and logs show it
+     */
     public FifoScheduler(String threadName) {
         this.threadName = Objects.requireNonNull(threadName, "threadName");
     }

@@ -30,6 +30,8 @@ public final class Job {
     private boolean reserved;
 
     /**
+     * A job for one delivery, not yet placed.
+     *
      * @param message    what is delivered
      * @param targetName the receiving component's profile text, for accounting and logs
      * @param target     the kernel's handle of the receiver; opaque to schedulers
@@ -45,37 +47,51 @@ public final class Job {
         this.releaseNs = releaseNs;
     }
 
+    /** {@return the message this job delivers} */
     public Message message() {
         return message;
     }
 
+    /** {@return the receiving component's profile text, for accounting and logs} */
     public String targetName() {
         return targetName;
     }
 
-    /** The kernel's handle of the receiver. Schedulers must treat it as opaque. */
+    /** {@return the kernel's handle of the receiver} Schedulers must treat it as opaque. */
     public Object target() {
         return target;
     }
 
+    /** {@return the arrival order, unique and increasing within a node; it breaks ties} */
     public long sequence() {
         return sequence;
     }
 
+    /**
+     * {@return when the job became ready, on the node's monotonic clock} Start latency and the
+     * absolute deadline are measured from it.
+     */
     public long releaseNs() {
         return releaseNs;
     }
 
     /**
-     * The absolute deadline on the monotonic clock, or {@link Long#MAX_VALUE} when the message's
-     * QoS has none.
+     * {@return the absolute deadline on the monotonic clock, {@link #releaseNs()} plus the QoS
+     * deadline, or {@link Long#MAX_VALUE} when the message's QoS has none}
      */
     public long absoluteDeadlineNs() {
         long deadlineNs = message.qos().deadlineNs();
         return deadlineNs > 0 ? releaseNs + deadlineNs : Long.MAX_VALUE;
     }
 
-    /** Records the scheduler's placement. Only the first call counts; re-queues keep it. */
+    /**
+     * Records the scheduler's placement. Only the first call counts; re-queues keep it. Called on
+     * the submitting thread before the job is queued.
+     *
+     * @param newDispatcherId the dispatcher that runs the job, &gt;= 0 (a negative id leaves the
+     *                        job unplaced)
+     * @param newKey          the ordering key within that dispatcher's queue; smaller runs first
+     */
     public void place(int newDispatcherId, long newKey) {
         if (dispatcherId < 0) {
             dispatcherId = newDispatcherId;
@@ -83,24 +99,24 @@ public final class Job {
         }
     }
 
-    /** Whether {@link #place} was called. */
+    /** {@return whether {@link #place} was called} */
     public boolean isPlaced() {
         return dispatcherId >= 0;
     }
 
-    /** The dispatcher chosen by the scheduler, or -1 before placement. */
+    /** {@return the dispatcher chosen by the scheduler, or -1 before placement} */
     public int dispatcherId() {
         return dispatcherId;
     }
 
-    /** The ordering key within the dispatcher's queue (smaller runs first). */
+    /** {@return the ordering key in the dispatcher's queue (smaller runs first), 0 if unplaced} */
     public long key() {
         return key;
     }
 
     /**
-     * Whether the kernel has already reserved the receiving component for this job (it waited for
-     * the component and is now next). Kernel use only.
+     * {@return whether the kernel has already reserved the receiving component for this job} It
+     * waited for the component and is now next. Kernel use only.
      */
     public boolean isReserved() {
         return reserved;

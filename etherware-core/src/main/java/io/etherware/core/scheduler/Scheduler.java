@@ -15,7 +15,7 @@ import java.util.List;
  */
 public interface Scheduler {
 
-    /** A short name for logs and reports, e.g. {@code fifo}. */
+    /** {@return a short name for logs and reports, e.g. {@code fifo}} */
     String name();
 
     /**
@@ -23,6 +23,7 @@ public interface Scheduler {
      *
      * @param runner the kernel's delivery callback
      * @param clock  the node's clock; dispatchers read its monotonic time
+     * @throws IllegalStateException if the scheduler was already started
      */
     void start(JobRunner runner, NodeClock clock);
 
@@ -30,6 +31,8 @@ public interface Scheduler {
      * Queues a job. Callable from any thread, including dispatcher threads; never blocks on
      * another job's execution.
      *
+     * @param job the job to queue; one that comes back after waiting for its busy component is
+     *            already placed and keeps that placement
      * @return false if the scheduler is shut down and did not take the job (the caller accounts
      *         for it); true otherwise
      */
@@ -38,6 +41,8 @@ public interface Scheduler {
     /**
      * The order of urgency among placed jobs, most urgent first. The kernel uses it to choose
      * which of the jobs waiting for a busy component goes next. The default is arrival order.
+     *
+     * @return a comparator of placed jobs that orders the more urgent first
      */
     default Comparator<Job> urgency() {
         return Comparator.comparingLong(Job::sequence);
@@ -47,6 +52,7 @@ public interface Scheduler {
      * Stops taking jobs, lets the dispatchers drain their queues for at most {@code timeoutNs},
      * then stops the threads.
      *
+     * @param timeoutNs how long the dispatchers may drain, in nanoseconds; &gt;= 0
      * @return the jobs that were queued but never run, so the kernel can count them as discarded
      */
     List<Job> shutdown(long timeoutNs);

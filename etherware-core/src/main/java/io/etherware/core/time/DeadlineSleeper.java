@@ -15,12 +15,20 @@ import java.util.concurrent.locks.LockSupport;
 @FunctionalInterface
 public interface DeadlineSleeper {
 
-    /** Sleeps until {@code deadlineNs} on the sleeper's clock, or returns at once if it has passed. */
+    /**
+     * Sleeps until {@code deadlineNs} on the sleeper's clock, or returns at once if it has passed.
+     *
+     * @param deadlineNs the absolute time to wake at, in nanoseconds of the clock's
+     *                   {@link NodeClock#nanoTime()}
+     */
     void sleepUntil(long deadlineNs);
 
     /**
      * {@link LockSupport#parkNanos} for the time left on {@code clock}: portable, and ended early by
      * {@link LockSupport#unpark} or an interrupt (whose flag it leaves set).
+     *
+     * @param clock the clock the deadlines are read on
+     * @return a sleeper that parks the calling thread until each deadline
      */
     static DeadlineSleeper parking(NodeClock clock) {
         Objects.requireNonNull(clock, "clock");

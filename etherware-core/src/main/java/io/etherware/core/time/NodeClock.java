@@ -9,13 +9,16 @@ package io.etherware.core.time;
  */
 public interface NodeClock {
 
-    /** Monotonic nanoseconds with an arbitrary origin, comparable only within this node. */
+    /** {@return monotonic nanoseconds from an arbitrary origin, comparable only in this node} */
     long nanoTime();
 
-    /** Nanoseconds since the Unix epoch, as this node believes it to be. */
+    /** {@return nanoseconds since the Unix epoch, as this node believes it to be} */
     long epochNanos();
 
-    /** The JVM's clocks: {@link System#nanoTime()} and the system wall clock. */
+    /**
+     * {@return the JVM's clocks: {@link System#nanoTime()} and the system wall clock} The same
+     * stateless instance on every call.
+     */
     static NodeClock system() {
         return SystemClock.INSTANCE;
     }
