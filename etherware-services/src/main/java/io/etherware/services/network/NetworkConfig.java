@@ -317,9 +317,9 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
         }
 
         /**
-         * How messages are encoded on the wire. Default: {@link MessageCodec#builder()} with its
-         * defaults and a document limit of {@code maxFrameBytes - 64}, so every message that
-         * encodes fits a frame.
+         * How messages are encoded on the wire. Default: a {@link MessageCodec} with a document
+         * limit of {@code maxFrameBytes - 64}, so every message that encodes fits a frame, over the
+         * contents types named in the {@link Builder} defaults.
          *
          * @param value the codec, or null for the default; its contents types must include every
          *              contents type sent across and match the peers'
