@@ -61,6 +61,14 @@ public record AccessRule(String node, Set<Operation> operations, String profileP
         MIGRATE
     }
 
+    /**
+     * Checks the rule and keeps an immutable copy of {@code operations}.
+     *
+     * @throws NullPointerException     if a field is null
+     * @throws IllegalArgumentException if {@code node} is neither a node id nor {@code "*"},
+     *                                  {@code operations} is empty, or {@code profilePattern} is
+     *                                  not a pattern as described above
+     */
     public AccessRule {
         Objects.requireNonNull(node, "node");
         Objects.requireNonNull(operations, "operations");
@@ -77,7 +85,16 @@ public record AccessRule(String node, Set<Operation> operations, String profileP
         compile(profilePattern); // validates
     }
 
-    /** A rule: {@code node} may ask for {@code operations} on the components {@code profilePattern} matches. */
+    /**
+     * A rule: {@code node} may ask for {@code operations} on the components {@code profilePattern}
+     * matches.
+     *
+     * @param node           a node id, or {@link #ANY_NODE}
+     * @param operations     what that node may ask for; not empty
+     * @param profilePattern which components, or {@link #ANY_PROFILE}
+     * @return the rule
+     * @throws IllegalArgumentException if a field is not valid (see the constructor)
+     */
     public static AccessRule allow(String node, Set<Operation> operations, String profilePattern) {
         return new AccessRule(node, operations, profilePattern);
     }
@@ -85,6 +102,12 @@ public record AccessRule(String node, Set<Operation> operations, String profileP
     /**
      * Whether this rule lets {@code nodeId} ask for {@code operation} on the component {@code profile}.
      * Parses the pattern on each call: management requests are rare and off the hot paths.
+     *
+     * @param nodeId    the node the request came from, as its connection established it
+     * @param operation what it asks for
+     * @param profile   the exact profile of the local component concerned (or, if none is reached,
+     *                  the profile the request names)
+     * @return true if all three match this rule
      */
     public boolean permits(String nodeId, Operation operation, Profile profile) {
         return (node.equals(ANY_NODE) || node.equals(nodeId)) && operations.contains(operation)

@@ -40,16 +40,31 @@ import java.util.Objects;
  */
 public record Implementation(String className, Path jar, String configuration) {
 
+    /**
+     * Checks that a class name is given; the rest is checked by the managed node.
+     *
+     * @throws NullPointerException if {@code className} is null
+     */
     public Implementation {
         Objects.requireNonNull(className, "className");
     }
 
-    /** A class on the managed node's class path, by name. */
+    /**
+     * A class on the managed node's class path, by name.
+     *
+     * @param className the class's binary name, e.g. {@code com.example.ControllerV2}
+     * @return the implementation, with its no-arg constructor
+     */
     public static Implementation ofClass(String className) {
         return new Implementation(className, null, null);
     }
 
-    /** A class on the managed node's class path (this JVM's class name for it). */
+    /**
+     * A class on the managed node's class path (this JVM's class name for it).
+     *
+     * @param type the class; the managed node loads it by name from its own class path
+     * @return the implementation, with its no-arg constructor
+     */
     public static Implementation ofClass(Class<? extends Component> type) {
         return ofClass(type.getName());
     }
@@ -57,12 +72,22 @@ public record Implementation(String className, Path jar, String configuration) {
     /**
      * A class in a jar on the managed node; the jar must lie in an allowlisted directory there and
      * be signed, entirely, by a key the node trusts.
+     *
+     * @param jar       the jar's path on the managed node
+     * @param className the class's binary name
+     * @return the implementation, with its no-arg constructor
      */
     public static Implementation fromJar(Path jar, String className) {
         return new Implementation(className, Objects.requireNonNull(jar, "jar"), null);
     }
 
-    /** This implementation, constructed with {@code value} as its configuration. */
+    /**
+     * This implementation, constructed with {@code value} as its configuration.
+     *
+     * @param value the argument of the class's {@code (String)} constructor, e.g. gains as text
+     * @return a copy with that configuration
+     * @throws NullPointerException if {@code value} is null
+     */
     public Implementation withConfiguration(String value) {
         return new Implementation(className, jar, Objects.requireNonNull(value, "configuration"));
     }

@@ -46,7 +46,12 @@ public final class Management {
     private Management() {
     }
 
-    /** The profile of the management service of node {@code nodeId}. */
+    /**
+     * The profile of the management service of node {@code nodeId}.
+     *
+     * @param nodeId the node's id
+     * @return {@code etherware.management[node=<nodeId>]}
+     */
     public static Profile profileOf(String nodeId) {
         return Profile.of(ROLE, "node", nodeId);
     }
@@ -61,6 +66,8 @@ public final class Management {
      * Idempotent.
      *
      * @param types the registry to add the management types to
+     * @throws IllegalArgumentException if {@code types} already has one of those names or records
+     *                                  under another partner
      */
     public static void registerContents(ContentsTypes types) {
         types.register("etherware.upgrade", UpgradeRequest.class);
@@ -72,7 +79,18 @@ public final class Management {
         types.register("etherware.migrationStepDone", MigrationStepDone.class);
     }
 
-    /** {@link #upgrade(Kernel, String, Profile, Implementation, Duration)} with {@link #DEFAULT_TIMEOUT}. */
+    /**
+     * {@link #upgrade(Kernel, String, Profile, Implementation, Duration)} with {@link #DEFAULT_TIMEOUT}.
+     *
+     * @param kernel         the requesting node; its node profile is the sender
+     * @param nodeId         the id of the node that hosts the component (this node's, or another
+     *                       reachable through a network route)
+     * @param target         the component's profile on that node, exact or a query matching one
+     * @param implementation the new logic
+     * @return the outcome; fails with {@link ManagementException} when the node refused or the
+     *         upgrade failed (the old logic then serves on), or with
+     *         {@link io.etherware.core.component.RequestFailedException} when no answer came
+     */
     public static CompletableFuture<UpgradeResult> upgrade(Kernel kernel, String nodeId, Profile target,
                                                            Implementation implementation) {
         return upgrade(kernel, nodeId, target, implementation, DEFAULT_TIMEOUT);
@@ -81,8 +99,15 @@ public final class Management {
     /**
      * Asks node {@code nodeId} to replace the logic of its component {@code target} with
      * {@code implementation}, from outside any component ({@code kernel}'s node profile is the
-     * sender).
+     * sender). The future completes on a kernel thread; see {@link Kernel#request}.
      *
+     * @param kernel         the requesting node; its node profile is the sender
+     * @param nodeId         the id of the node that hosts the component (this node's, or another
+     *                       reachable through a network route)
+     * @param target         the component's profile on that node, exact or a query matching one
+     * @param implementation the new logic
+     * @param timeout        how long to wait for the answer; &gt; 0, and longer than the node's
+     *                       {@link ManagementConfig#firstMessageWaitNs()} plus the loading
      * @return the outcome; fails with {@link ManagementException} when the node refused or the
      *         upgrade failed (the old logic then serves on), or with
      *         {@link io.etherware.core.component.RequestFailedException} when no answer came
@@ -96,7 +121,18 @@ public final class Management {
         return kernel.request(request, timeout.toNanos()).thenApply(Management::upgradeResultOf);
     }
 
-    /** {@link #upgrade(ComponentContext, String, Profile, Implementation, Duration)} with {@link #DEFAULT_TIMEOUT}. */
+    /**
+     * {@link #upgrade(ComponentContext, String, Profile, Implementation, Duration)} with
+     * {@link #DEFAULT_TIMEOUT}. Never wait for the future on a dispatcher.
+     *
+     * @param context        the requesting component's context; the component is the sender
+     * @param nodeId         the id of the node that hosts the component
+     * @param target         the component's profile on that node, exact or a query matching one
+     * @param implementation the new logic
+     * @return the outcome; fails with {@link ManagementException} when the node refused or the
+     *         upgrade failed (the old logic then serves on), or with
+     *         {@link io.etherware.core.component.RequestFailedException} when no answer came
+     */
     public static CompletableFuture<UpgradeResult> upgrade(ComponentContext context, String nodeId, Profile target,
                                                            Implementation implementation) {
         return upgrade(context, nodeId, target, implementation, DEFAULT_TIMEOUT);
@@ -106,6 +142,16 @@ public final class Management {
      * From a component (the paper's Requester): asks node {@code nodeId} to upgrade {@code target}.
      * The future completes on the requesting component's dispatcher, like any
      * {@link ComponentContext#request}; never wait for it there.
+     *
+     * @param context        the requesting component's context; the component is the sender
+     * @param nodeId         the id of the node that hosts the component
+     * @param target         the component's profile on that node, exact or a query matching one
+     * @param implementation the new logic
+     * @param timeout        how long to wait for the answer; &gt; 0, and longer than the node's
+     *                       {@link ManagementConfig#firstMessageWaitNs()} plus the loading
+     * @return the outcome; fails with {@link ManagementException} when the node refused or the
+     *         upgrade failed (the old logic then serves on), or with
+     *         {@link io.etherware.core.component.RequestFailedException} when no answer came
      */
     public static CompletableFuture<UpgradeResult> upgrade(ComponentContext context, String nodeId, Profile target,
                                                            Implementation implementation, Duration timeout) {
@@ -114,7 +160,18 @@ public final class Management {
                 timeout.toNanos()).thenApply(Management::upgradeResultOf);
     }
 
-    /** {@link #migrate(Kernel, String, Profile, String, Duration)} with {@link #DEFAULT_TIMEOUT}. */
+    /**
+     * {@link #migrate(Kernel, String, Profile, String, Duration)} with {@link #DEFAULT_TIMEOUT}.
+     *
+     * @param kernel   the requesting node; its node profile is the sender
+     * @param fromNode the id of the node that hosts the component now
+     * @param target   the component's profile there, exact or a query matching one
+     * @param toNode   the id of the node to move it to
+     * @return the outcome with its phase timings and gap; fails with {@link ManagementException}
+     *         when a node refused or the migration failed (the component then runs on at
+     *         {@code fromNode}, nothing lost), or with
+     *         {@link io.etherware.core.component.RequestFailedException} when no answer came
+     */
     public static CompletableFuture<MigrationResult> migrate(Kernel kernel, String fromNode, Profile target,
                                                              String toNode) {
         return migrate(kernel, fromNode, MigrateRequest.of(target, toNode), DEFAULT_TIMEOUT);
@@ -123,8 +180,15 @@ public final class Management {
     /**
      * Asks node {@code fromNode} to move its component {@code target} to node {@code toNode}, as
      * an instance of the class it runs now (constructed there with its no-arg constructor), from
-     * outside any component ({@code kernel}'s node profile is the sender).
+     * outside any component ({@code kernel}'s node profile is the sender). The future completes
+     * on a kernel thread; see {@link Kernel#request}.
      *
+     * @param kernel   the requesting node
+     * @param fromNode the id of the node that hosts the component now
+     * @param target   the component's profile there, exact or a query matching one
+     * @param toNode   the id of the node to move it to
+     * @param timeout  how long to wait for the answer, &gt; 0: longer than the source's
+     *                 {@link ManagementConfig#migrationStepTimeoutNs()} times the three steps
      * @return the outcome with its phase timings and gap; fails with {@link ManagementException}
      *         when a node refused or the migration failed (the component then runs on at
      *         {@code fromNode}, nothing lost), or with
@@ -138,7 +202,17 @@ public final class Management {
     /**
      * Sends {@code request} (e.g. {@link MigrateRequest#of(Profile, String, Implementation)} for
      * another class or a configured constructor) to node {@code fromNode}, from outside any
-     * component.
+     * component. The future completes on a kernel thread; see {@link Kernel#request}.
+     *
+     * @param kernel   the requesting node; its node profile is the sender
+     * @param fromNode the id of the node that hosts the component now
+     * @param request  what to move where, and as which class
+     * @param timeout  how long to wait for the answer, &gt; 0: longer than the source's
+     *                 {@link ManagementConfig#migrationStepTimeoutNs()} times the three steps
+     * @return the outcome with its phase timings and gap; fails with {@link ManagementException}
+     *         when a node refused or the migration failed (the component then runs on at
+     *         {@code fromNode}, nothing lost), or with
+     *         {@link io.etherware.core.component.RequestFailedException} when no answer came
      */
     public static CompletableFuture<MigrationResult> migrate(Kernel kernel, String fromNode, MigrateRequest request,
                                                              Duration timeout) {
@@ -153,6 +227,16 @@ public final class Management {
      * From a component (the paper's Requester, Section VI-C2): asks node {@code fromNode} to move
      * {@code target} to node {@code toNode}. The future completes on the requesting component's
      * dispatcher, like any {@link ComponentContext#request}; never wait for it there.
+     *
+     * @param context  the requesting component's context; the component is the sender
+     * @param fromNode the id of the node that hosts the component now
+     * @param request  what to move where, and as which class
+     * @param timeout  how long to wait for the answer, &gt; 0: longer than the source's
+     *                 {@link ManagementConfig#migrationStepTimeoutNs()} times the three steps
+     * @return the outcome with its phase timings and gap; fails with {@link ManagementException}
+     *         when a node refused or the migration failed (the component then runs on at
+     *         {@code fromNode}, nothing lost), or with
+     *         {@link io.etherware.core.component.RequestFailedException} when no answer came
      */
     public static CompletableFuture<MigrationResult> migrate(ComponentContext context, String fromNode,
                                                              MigrateRequest request, Duration timeout) {
@@ -162,8 +246,11 @@ public final class Management {
     }
 
     /**
-     * The result an answer to a migration request carries.
+     * The result an answer to a migration request carries, for callers that send the request
+     * themselves.
      *
+     * @param reply the answer
+     * @return its {@link MigrationResult}
      * @throws ManagementException   if the answer is a {@link ManagementFailure}
      * @throws IllegalStateException if the answer is anything else
      */
@@ -177,8 +264,11 @@ public final class Management {
     }
 
     /**
-     * The result an answer to an upgrade request carries.
+     * The result an answer to an upgrade request carries, for callers that send the request
+     * themselves.
      *
+     * @param reply the answer
+     * @return its {@link UpgradeResult}
      * @throws ManagementException   if the answer is a {@link ManagementFailure}
      * @throws IllegalStateException if the answer is anything else
      */

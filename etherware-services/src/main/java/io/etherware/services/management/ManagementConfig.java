@@ -89,6 +89,15 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
                                boolean allowUnauthenticatedLinks, long firstMessageWaitNs, long migrationStepTimeoutNs,
                                long handoverWaitNs, ClassLoader classLoader) {
 
+    /**
+     * Copies the lists and checks the fields.
+     *
+     * @throws NullPointerException     if a list, an element or {@code classLoader} is null
+     * @throws IllegalArgumentException if an allowlist entry is not absolute and normalized,
+     *                                  {@code firstMessageWaitNs} &lt; 0,
+     *                                  {@code migrationStepTimeoutNs} &lt;= 0, or
+     *                                  {@code handoverWaitNs} &lt;= {@code migrationStepTimeoutNs}
+     */
     public ManagementConfig {
         allowlist = List.copyOf(allowlist);
         trustedSigners = List.copyOf(trustedSigners);
@@ -113,11 +122,20 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
         Objects.requireNonNull(classLoader, "classLoader=null: leave the default (the system class loader)");
     }
 
-    /** The defaults listed above. */
+    /**
+     * The defaults listed above: local management only, no plugins.
+     *
+     * @return a configuration with every default
+     */
     public static ManagementConfig defaults() {
         return builder().build();
     }
 
+    /**
+     * A builder holding the defaults listed above.
+     *
+     * @return a new builder
+     */
     public static Builder builder() {
         return new Builder();
     }
@@ -138,8 +156,11 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
 
         /**
          * Allows jars in {@code directory} and its subdirectories. The directory is resolved to
-         * its canonical path now (symbolic links followed), so it must exist.
+         * its canonical path now (symbolic links followed), so it must exist. Default: no
+         * directory, so no jar is loaded.
          *
+         * @param directory a directory on this node
+         * @return this builder
          * @throws IllegalArgumentException if it does not exist or is not a directory
          */
         public Builder allowDirectory(Path directory) {
@@ -161,13 +182,28 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
         /**
          * Lets node {@code node} ({@code "*"}: any node) ask this node for {@code operations} on
          * the components {@code profilePattern} matches; see {@link AccessRule} for the matching.
-         * Each call adds a rule; a request is served if any rule permits it.
+         * Each call adds a rule; a request is served if any rule permits it. Default: no rule, so
+         * every request and migration step from another node is refused.
+         *
+         * @param node           a node id, or {@code "*"} for every node
+         * @param operations     what that node may ask for; not empty
+         * @param profilePattern which components: a profile query whose role may contain
+         *                       {@code *}, or {@code "*"} for every component
+         * @return this builder
+         * @throws IllegalArgumentException if the node id, the operations or the pattern is not
+         *                                  valid (see {@link AccessRule})
          */
         public Builder allowRemote(String node, Set<AccessRule.Operation> operations, String profilePattern) {
             return allowRemote(new AccessRule(node, operations, profilePattern));
         }
 
-        /** Adds {@code rule} to the access list. */
+        /**
+         * Adds {@code rule} to the access list.
+         *
+         * @param rule the rule
+         * @return this builder
+         * @throws NullPointerException if {@code rule} is null
+         */
         public Builder allowRemote(AccessRule rule) {
             accessList.add(Objects.requireNonNull(rule, "rule"));
             return this;
@@ -178,13 +214,23 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
          * authenticate their peer (plain TCP), whose node id is only the peer's word. For a
          * loopback development setup; between machines, connect the nodes with TLS instead.
          * Default false: such requests are refused.
+         *
+         * @param value true to let the access list decide for unauthenticated links too
+         * @return this builder
          */
         public Builder allowUnauthenticatedLinks(boolean value) {
             allowUnauthenticatedLinks = value;
             return this;
         }
 
-        /** Trusts plugins signed with the key of {@code certificate}, or of a certificate it issued. */
+        /**
+         * Trusts plugins signed with the key of {@code certificate}, or of a certificate it issued.
+         * Default: no trusted signer, so no jar is loaded.
+         *
+         * @param certificate the signer's or its CA's certificate
+         * @return this builder
+         * @throws NullPointerException if {@code certificate} is null
+         */
         public Builder trustedSigner(X509Certificate certificate) {
             trustedSigners.add(Objects.requireNonNull(certificate, "certificate"));
             return this;
@@ -194,7 +240,9 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
          * Trusts the certificates of {@code store}'s trusted-certificate entries (those that
          * {@code keytool -importcert} makes) as plugin signers.
          *
-         * @throws IllegalArgumentException if it holds none
+         * @param store a loaded key store
+         * @return this builder
+         * @throws IllegalArgumentException if it holds none, or cannot be read
          */
         public Builder trustedSigners(KeyStore store) {
             Objects.requireNonNull(store, "store");
@@ -221,8 +269,11 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
 
         /**
          * Trusts the certificates of the PKCS12 trust store {@code file} (see
-         * {@link #trustedSigners(KeyStore)}), opened with {@code password}.
+         * {@link #trustedSigners(KeyStore)}), opened with {@code password}. Reads the file now.
          *
+         * @param file     the PKCS12 trust store
+         * @param password its password
+         * @return this builder
          * @throws IllegalArgumentException if it cannot be read or holds no certificate
          */
         public Builder trustStore(Path file, char[] password) {
@@ -242,7 +293,15 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
             }
         }
 
-        /** How long an upgrade's answer waits for the new logic's first message (default 1 s). */
+        /**
+         * How long an upgrade's answer waits for the new logic's first message, to report the
+         * swap gap; after it, the answer goes out with {@code gapNs = -1}. Also bounds a
+         * migration's hand-over answer at a target. Default 1 s.
+         *
+         * @param value &gt;= 0 (0: answer at once, without the gap)
+         * @return this builder
+         * @throws IllegalArgumentException if {@code value} is negative
+         */
         public Builder firstMessageWait(Duration value) {
             Objects.requireNonNull(value, "firstMessageWait");
             if (value.isNegative()) {
@@ -252,27 +311,55 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
             return this;
         }
 
-        /** How long a migration's source waits for each answer of the target (default 2 s). */
+        /**
+         * How long a migration's source waits for each answer of the target (prepare, install,
+         * hand-over); a step without an answer fails the migration and the component resumes at
+         * the source. Default 2 s.
+         *
+         * @param value &gt; 0, and shorter than the {@link #handoverWait} (checked by
+         *              {@link #build()})
+         * @return this builder
+         */
         public Builder migrationStepTimeout(Duration value) {
             Objects.requireNonNull(value, "migrationStepTimeout");
             migrationStepTimeoutNs = value.toNanos();
             return this;
         }
 
-        /** How long a migration's target keeps the arrived component held for the hand-over (default 5 s). */
+        /**
+         * How long a migration's target keeps the arrived component held for the hand-over before
+         * it gives the migration up and removes the component. Default 5 s.
+         *
+         * @param value longer than the {@link #migrationStepTimeout}, so a target never gives up a
+         *              migration its source still waits for (checked by {@link #build()})
+         * @return this builder
+         */
         public Builder handoverWait(Duration value) {
             Objects.requireNonNull(value, "handoverWait");
             handoverWaitNs = value.toNanos();
             return this;
         }
 
-        /** Where class-path implementations come from, and the parent of jar class loaders. */
+        /**
+         * Where class-path implementations come from, and the parent of jar class loaders.
+         * Default: the system class loader.
+         *
+         * @param value the class loader
+         * @return this builder
+         * @throws NullPointerException if {@code value} is null
+         */
         public Builder classLoader(ClassLoader value) {
             classLoader = Objects.requireNonNull(value, "classLoader");
             return this;
         }
 
-        /** The validated configuration. */
+        /**
+         * The validated configuration. The builder may be used again afterwards.
+         *
+         * @return the configuration
+         * @throws IllegalArgumentException if the handover wait is not longer than the migration
+         *                                  step timeout, or the step timeout is not positive
+         */
         public ManagementConfig build() {
             return new ManagementConfig(allowlist, trustedSigners, accessList, allowUnauthenticatedLinks,
                     firstMessageWaitNs, migrationStepTimeoutNs, handoverWaitNs, classLoader);

@@ -18,6 +18,11 @@ import java.util.Objects;
  */
 public record ManagementFailure(String operation, Profile target, Reason reason, String error) implements Contents {
 
+    /**
+     * Checks that every field is given.
+     *
+     * @throws NullPointerException if a field is null
+     */
     public ManagementFailure {
         Objects.requireNonNull(operation, "operation");
         Objects.requireNonNull(target, "target");

@@ -102,7 +102,11 @@ public final class ManagementService implements Component {
 
     /**
      * A service managing the components of {@code kernel}'s node; add it at
-     * {@link Management#profileOf}, or use {@link #install}.
+     * {@link Management#profileOf}, or use {@link #install}. It cannot migrate components away
+     * from this node, but can be the target of a migration.
+     *
+     * @param kernel the node whose components it manages
+     * @param config its allowlist, trusted signers, access list and timeouts
      */
     public ManagementService(Kernel kernel, ManagementConfig config) {
         this(kernel, config, null);
@@ -112,6 +116,10 @@ public final class ManagementService implements Component {
      * A service managing the components of {@code kernel}'s node, able to migrate them to the
      * nodes {@code network} connects it to (null: no migrations from this node; it can still be
      * the target of one).
+     *
+     * @param kernel  the node whose components it manages
+     * @param config  its allowlist, trusted signers, access list and timeouts
+     * @param network the node's started messenger, or null
      */
     public ManagementService(Kernel kernel, ManagementConfig config, NetworkMessenger network) {
         this(kernel, config, network, new Counters(), new ConcurrentHashMap<>());
@@ -130,8 +138,11 @@ public final class ManagementService implements Component {
     }
 
     /**
-     * Adds a management service to {@code node} at {@code etherware.management[node=<id>]}.
+     * Adds a management service to {@code node} at {@code etherware.management[node=<id>]},
+     * without migrations from this node.
      *
+     * @param node   the node whose components it manages
+     * @param config its allowlist, trusted signers, access list and timeouts
      * @return the service; if its supervision restarts it, the new instances share its counters
      */
     public static ManagementService install(EtherwareNode node, ManagementConfig config) {
@@ -141,6 +152,11 @@ public final class ManagementService implements Component {
     /**
      * Adds a management service to {@code node} that can also migrate its components to the
      * nodes {@code network} connects it to. Start the messenger first.
+     *
+     * @param node    the node whose components it manages
+     * @param config  its allowlist, trusted signers, access list and timeouts
+     * @param network the node's started messenger, or null for no migrations from this node
+     * @return the service; if its supervision restarts it, the new instances share its counters
      */
     public static ManagementService install(EtherwareNode node, ManagementConfig config, NetworkMessenger network) {
         var first = new ManagementService(node, config, network);
@@ -153,6 +169,12 @@ public final class ManagementService implements Component {
         return first;
     }
 
+    /**
+     * Starts the service's worker thread (one per service, for loading and answering). Called by
+     * the kernel when the service starts or restarts.
+     *
+     * @param context the service's context; its logger and replies are used from here on
+     */
     @Override
     public void onStart(ComponentContext context) {
         this.context = context;
@@ -177,6 +199,16 @@ public final class ManagementService implements Component {
         worker.shutdown();
     }
 
+    /**
+     * Serves one message on the service's dispatcher without blocking: refuses (and counts) what
+     * the access list does not allow; hands an upgrade's loading, a migration away from this node
+     * and a migration's PREPARE step to the worker; starts an upgrade's swap and serves a
+     * migration's INSTALL and HANDOVER steps here. Anything else with a sender is refused with
+     * {@link Reason#BAD_REQUEST}.
+     *
+     * @param message an {@link UpgradeRequest}, {@link MigrateRequest} or {@link MigrationStep}
+     * @param context the service's context
+     */
     @Override
     public void onMessage(Message message, ComponentContext context) {
         switch (message.contents()) {
@@ -488,17 +520,29 @@ public final class ManagementService implements Component {
         }
     }
 
-    /** Upgrades answered with a result. Any thread. */
+    /**
+     * Upgrades answered with a result. Any thread.
+     *
+     * @return the count so far (the instances that restarts make after {@link #install} share it)
+     */
     public long upgradedCount() {
         return counters.upgraded.sum();
     }
 
-    /** Migrations of this node's components to other nodes answered with a result. Any thread. */
+    /**
+     * Migrations of this node's components to other nodes answered with a result. Any thread.
+     *
+     * @return the count so far (the instances that restarts make after {@link #install} share it)
+     */
     public long migratedCount() {
         return counters.migrated.sum();
     }
 
-    /** Migrated components that arrived at this node and were handed over. Any thread. */
+    /**
+     * Migrated components that arrived at this node and were handed over. Any thread.
+     *
+     * @return the count so far (the instances that restarts make after {@link #install} share it)
+     */
     public long migratedInCount() {
         return counters.migratedIn.sum();
     }
@@ -507,6 +551,8 @@ public final class ManagementService implements Component {
      * Upgrades and migrations (or their steps here) that failed, refusals on arrival not included;
      * a migration stopped inside by an access check (a step from another node than the one that
      * prepared it, an answer from another node than the target) counts here. Any thread.
+     *
+     * @return the count so far (the instances that restarts make after {@link #install} share it)
      */
     public long failedCount() {
         return counters.failed.sum();
@@ -516,6 +562,8 @@ public final class ManagementService implements Component {
      * Requests and migration steps refused on arrival: from other nodes that the access list does
      * not allow (or relayed, or over an unauthenticated link), or of a kind the service does not
      * serve. Any thread.
+     *
+     * @return the count so far (the instances that restarts make after {@link #install} share it)
      */
     public long refusedCount() {
         return counters.refused.sum();

@@ -26,17 +26,37 @@ import java.util.Objects;
 public record MigrateRequest(Profile target, String toNode, String className, String jarPath, String configuration)
         implements Contents {
 
+    /**
+     * Checks that the target and the destination are given; the rest is checked by the nodes.
+     *
+     * @throws NullPointerException if {@code target} or {@code toNode} is null
+     */
     public MigrateRequest {
         Objects.requireNonNull(target, "target");
         Objects.requireNonNull(toNode, "toNode");
     }
 
-    /** Moves {@code target} to {@code toNode} as an instance of the class it runs now (no-arg constructor). */
+    /**
+     * Moves {@code target} to {@code toNode} as an instance of the class it runs now (no-arg
+     * constructor), loaded from the destination's class path.
+     *
+     * @param target the component's profile on the source node, exact or a query matching one
+     * @param toNode the id of the node to move it to
+     * @return the request
+     */
     public static MigrateRequest of(Profile target, String toNode) {
         return new MigrateRequest(target, toNode, null, null, null);
     }
 
-    /** Moves {@code target} to {@code toNode} as an instance of {@code implementation}. */
+    /**
+     * Moves {@code target} to {@code toNode} as an instance of {@code implementation}.
+     *
+     * @param target         the component's profile on the source node, exact or a query matching
+     *                       one
+     * @param toNode         the id of the node to move it to
+     * @param implementation the class to instantiate there, with its jar and configuration
+     * @return the request
+     */
     public static MigrateRequest of(Profile target, String toNode, Implementation implementation) {
         return new MigrateRequest(target, toNode, implementation.className(),
                 implementation.jar() == null ? null : implementation.jar().toString(), implementation.configuration());

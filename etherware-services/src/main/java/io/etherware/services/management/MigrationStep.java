@@ -29,6 +29,12 @@ public record MigrationStep(Phase phase, Profile target, String fromNode, Profil
                             String configuration, ComponentState state, long forwarded)
         implements Contents {
 
+    /**
+     * Checks that the fields every phase needs are given.
+     *
+     * @throws NullPointerException if {@code phase}, {@code target}, {@code fromNode} or
+     *                              {@code arrival} is null
+     */
     public MigrationStep {
         Objects.requireNonNull(phase, "phase");
         Objects.requireNonNull(target, "target");

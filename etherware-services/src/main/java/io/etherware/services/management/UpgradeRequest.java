@@ -24,12 +24,24 @@ import java.util.Objects;
 public record UpgradeRequest(Profile target, String className, String jarPath, String configuration)
         implements Contents {
 
+    /**
+     * Checks that the target and the class are given; the rest is checked by the managed node.
+     *
+     * @throws NullPointerException if {@code target} or {@code className} is null
+     */
     public UpgradeRequest {
         Objects.requireNonNull(target, "target");
         Objects.requireNonNull(className, "className");
     }
 
-    /** The request for {@code implementation}. */
+    /**
+     * The request for {@code implementation}.
+     *
+     * @param target         the component's profile on the managed node, exact or a query
+     *                       matching one
+     * @param implementation the new logic: its class, jar and configuration
+     * @return the request
+     */
     public static UpgradeRequest of(Profile target, Implementation implementation) {
         return new UpgradeRequest(target, implementation.className(),
                 implementation.jar() == null ? null : implementation.jar().toString(), implementation.configuration());

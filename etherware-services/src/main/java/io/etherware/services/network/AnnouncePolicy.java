@@ -19,15 +19,30 @@ import java.util.regex.Pattern;
 @FunctionalInterface
 public interface AnnouncePolicy {
 
-    /** Whether node {@code nodeId} (authenticated, when links are TLS) may host {@code profile}. */
+    /**
+     * Whether node {@code nodeId} may host {@code profile}. Called on a connection's reader thread
+     * for each announced profile; must not block.
+     *
+     * @param nodeId  the announcing node (authenticated, when links are TLS)
+     * @param profile the application profile it announced
+     * @return true to route {@code profile} to that node, false to refuse (counted and logged)
+     */
     boolean allows(String nodeId, Profile profile);
 
-    /** Every connected node may announce any application profile: the default. */
+    /**
+     * Every connected node may announce any application profile: the default.
+     *
+     * @return a policy that allows everything
+     */
     static AnnouncePolicy any() {
         return (nodeId, profile) -> true;
     }
 
-    /** A policy of allow rules; a profile no rule allows is refused. */
+    /**
+     * A policy of allow rules; a profile no rule allows is refused.
+     *
+     * @return a new builder without rules (it builds a policy that refuses everything)
+     */
     static Builder builder() {
         return new Builder();
     }
@@ -48,6 +63,13 @@ public interface AnnouncePolicy {
         /**
          * Lets {@code nodeId} ({@code *}: any node) announce profiles matching {@code profileGlob},
          * e.g. {@code allow("node-2", "controller*")}.
+         *
+         * @param nodeId      a node id, or {@code *} for any node
+         * @param profileGlob a pattern over the profile's canonical text in which {@code *} stands
+         *                    for any characters; not empty ({@code *} for every profile)
+         * @return this builder
+         * @throws IllegalArgumentException if {@code nodeId} is not a node id or {@code *}, or
+         *                                  {@code profileGlob} is empty
          */
         public Builder allow(String nodeId, String profileGlob) {
             Objects.requireNonNull(nodeId, "nodeId");
@@ -68,7 +90,11 @@ public interface AnnouncePolicy {
             return this;
         }
 
-        /** The policy; immutable. */
+        /**
+         * The policy: a profile is allowed if any rule matches. Immutable and thread-safe.
+         *
+         * @return the policy of the rules added so far
+         */
         public AnnouncePolicy build() {
             List<Rule> fixed = List.copyOf(rules);
             return new AnnouncePolicy() {

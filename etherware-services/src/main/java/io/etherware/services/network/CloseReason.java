@@ -53,17 +53,30 @@ public enum CloseReason {
         this.badInput = badInput;
     }
 
-    /** The reason's code on the wire. */
+    /**
+     * The reason's code on the wire.
+     *
+     * @return the code, 1 to 16, fixed per reason
+     */
     public int code() {
         return code;
     }
 
-    /** Whether the peer broke the protocol (counted as bad input). */
+    /**
+     * Whether the peer broke the protocol (counted as bad input).
+     *
+     * @return true for the bad-input reasons
+     */
     public boolean isBadInput() {
         return badInput;
     }
 
-    /** The reason for a wire code; {@link #PEER_CLOSED} for a code this version does not know. */
+    /**
+     * The reason for a wire code.
+     *
+     * @param code a code from a BYE frame
+     * @return its reason, or {@link #PEER_CLOSED} for a code this version does not know
+     */
     public static CloseReason ofCode(int code) {
         for (CloseReason reason : values()) {
             if (reason.code == code) {

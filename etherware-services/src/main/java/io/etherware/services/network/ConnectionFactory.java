@@ -20,10 +20,24 @@ import java.util.Optional;
  */
 public interface ConnectionFactory {
 
-    /** A server socket bound to {@code address} (port 0: an ephemeral port). */
+    /**
+     * A server socket bound to {@code address}. Called once, when the messenger starts.
+     *
+     * @param address the listen address (port 0: an ephemeral port)
+     * @return the bound server socket
+     * @throws IOException if the address cannot be bound
+     */
     ServerSocket listen(InetSocketAddress address) throws IOException;
 
-    /** A socket connected to {@code address}, giving up after {@code timeoutMs}. */
+    /**
+     * A socket connected to {@code address}. Called on a dialing thread; may block up to
+     * {@code timeoutMs}.
+     *
+     * @param address   the peer's listen address
+     * @param timeoutMs how long the connect may take, in milliseconds, &gt;= 1
+     * @return the connected socket
+     * @throws IOException if the connection is refused, unreachable or times out
+     */
     Socket connect(InetSocketAddress address, int timeoutMs) throws IOException;
 
     /**
@@ -32,6 +46,7 @@ public interface ConnectionFactory {
      * Called once per connection, on the connection's own thread, with the socket's read timeout
      * set to the handshake timeout.
      *
+     * @param socket the connection, accepted or dialed through this factory
      * @return the authenticated node id, or empty if this factory does not authenticate peers
      * @throws IOException if the peer cannot be authenticated (the connection is closed)
      */
@@ -39,7 +54,11 @@ public interface ConnectionFactory {
         return Optional.empty();
     }
 
-    /** Whether {@link #authenticate} establishes who the peer is (a node id from a certificate). */
+    /**
+     * Whether {@link #authenticate} establishes who the peer is (a node id from a certificate).
+     *
+     * @return false by default; true lets a messenger use addresses beyond loopback
+     */
     default boolean authenticatesPeers() {
         return false;
     }
@@ -47,12 +66,18 @@ public interface ConnectionFactory {
     /**
      * The node id this node's own credentials name, if the factory has any: the messenger refuses
      * to start when it differs from the node's id.
+     *
+     * @return the node id, or empty (the default) for a factory without credentials
      */
     default Optional<String> localNodeId() {
         return Optional.empty();
     }
 
-    /** Plain TCP: no encryption, no authentication; for loopback development. */
+    /**
+     * Plain TCP: no encryption, no authentication; for loopback development.
+     *
+     * @return the shared plain-TCP factory
+     */
     static ConnectionFactory plain() {
         return PlainTcp.INSTANCE;
     }
@@ -65,6 +90,9 @@ public interface ConnectionFactory {
      * @param trustStore         the certificates of the deployment's CA, which every node's
      *                           certificate must chain to
      * @param trustStorePassword the trust store's password
+     * @return the factory, which authenticates peers
+     * @throws IOException naming the file and what was wrong with it (see
+     *                     {@link TlsConnectionFactory#fromPkcs12})
      */
     static ConnectionFactory tls(Path keyStore, char[] keyStorePassword, Path trustStore, char[] trustStorePassword)
             throws IOException {
@@ -73,6 +101,7 @@ public interface ConnectionFactory {
 
     /** Plain TCP sockets from {@code java.net}. */
     enum PlainTcp implements ConnectionFactory {
+        /** The only instance; stateless. */
         INSTANCE;
 
         @Override

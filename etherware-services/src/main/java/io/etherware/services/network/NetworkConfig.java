@@ -101,6 +101,15 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
                 : MessageCodec.builder().contentsTypes(kernel.contentsTypes()).maxDocumentBytes(maxFrameBytes - 64).build();
     }
 
+    /**
+     * Checks every field and their relations; the bounds are listed on the {@link Builder}'s
+     * setters.
+     *
+     * @throws NullPointerException     if a required field is null, naming it and the usual value
+     * @throws IllegalArgumentException naming the field, its value and the valid range, or, for a
+     *                                  factory that does not authenticate peers without
+     *                                  {@code insecure}, the first address beyond loopback
+     */
     public NetworkConfig {
         Objects.requireNonNull(listenAddress, "listenAddress=null: e.g. listen(new InetSocketAddress(\"0.0.0.0\", 7400))");
         peers = List.copyOf(Objects.requireNonNull(peers, "peers=null"));
@@ -145,7 +154,13 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
         }
     }
 
-    /** Whether links of this configuration go beyond loopback without authentication (chosen on purpose). */
+    /**
+     * Whether links of this configuration go beyond loopback without authentication (which only
+     * {@link Builder#insecure} allows); the messenger warns when it starts so.
+     *
+     * @return true if the factory does not authenticate peers and the listen address or a peer is
+     *         not a loopback address
+     */
     public boolean isInsecureBeyondLoopback() {
         if (connectionFactory.authenticatesPeers()) {
             return false;
@@ -189,7 +204,11 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
         }
     }
 
-    /** A builder holding the defaults. */
+    /**
+     * A builder holding the defaults.
+     *
+     * @return a new builder; see {@link Builder} for the defaults
+     */
     public static Builder builder() {
         return new Builder();
     }
@@ -246,74 +265,181 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
         Builder() {
         }
 
-        /** Where to accept connections. */
+        /**
+         * Where to accept connections from other nodes. Default: the loopback address, any free
+         * port. Beyond loopback it needs an authenticating factory or {@link #insecure}.
+         *
+         * @param value the address to bind; port 0 for any free port (see
+         *              {@link NetworkMessenger#localAddress()}); not null (checked by {@link #build()})
+         * @return this builder
+         */
         public Builder listen(InetSocketAddress value) {
             listenAddress = value;
             return this;
         }
 
-        /** Where to accept connections: {@code host:port}. */
+        /**
+         * Where to accept connections: {@code host:port}, e.g. {@code listen("0.0.0.0", 7400)} for
+         * every interface. The host name is looked up now.
+         *
+         * @param host the interface's address or host name
+         * @param port the port, 0..65535 (0: any free port)
+         * @return this builder
+         * @throws IllegalArgumentException if {@code port} is out of range or {@code host} is null
+         */
         public Builder listen(String host, int port) {
             return listen(new InetSocketAddress(host, port));
         }
 
-        /** A node to dial and keep connected. */
+        /**
+         * A node to dial and keep connected; may be called for several nodes. Default: none (the
+         * node only accepts). Beyond loopback it needs an authenticating factory or
+         * {@link #insecure}.
+         *
+         * @param value the peer's listen address
+         * @return this builder
+         * @throws NullPointerException if {@code value} is null
+         */
         public Builder peer(InetSocketAddress value) {
             peers.add(Objects.requireNonNull(value, "peer"));
             return this;
         }
 
-        /** A node to dial and keep connected: {@code host:port}. */
+        /**
+         * A node to dial and keep connected: {@code host:port}. The host name is looked up now.
+         *
+         * @param host the peer's address or host name
+         * @param port its listen port, 0..65535
+         * @return this builder
+         * @throws IllegalArgumentException if {@code port} is out of range or {@code host} is null
+         */
         public Builder peer(String host, int port) {
             return peer(new InetSocketAddress(host, port));
         }
 
+        /**
+         * How sockets are made and peers authenticated. Default {@link ConnectionFactory#plain()},
+         * which authenticates nobody and is therefore limited to loopback unless {@link #insecure}.
+         *
+         * @param value e.g. {@link ConnectionFactory#tls}; not null (checked by {@link #build()})
+         * @return this builder
+         */
         public Builder connectionFactory(ConnectionFactory value) {
             connectionFactory = value;
             return this;
         }
 
+        /**
+         * How messages are encoded on the wire. Default: a {@link MessageCodec} with a document
+         * limit of {@code maxFrameBytes - 64}, so every message that encodes fits a frame, over the
+         * contents types named in the {@link Builder} defaults.
+         *
+         * @param value the codec, or null for the default; its contents types must include every
+         *              contents type sent across and match the peers'
+         * @return this builder
+         */
         public Builder codec(MessageCodec value) {
             codec = value;
             return this;
         }
 
+        /**
+         * The largest frame accepted from a peer and sent to one; a longer one from a peer closes
+         * the connection ({@link CloseReason#OVERSIZE_FRAME}). Default
+         * {@value #DEFAULT_MAX_FRAME_BYTES} (1 MiB).
+         *
+         * @param value bytes, {@value #MIN_FRAME_BYTES} to 256 MiB; at most half of
+         *              {@code maxQueuedBytesPerPeer} and of {@code maxInboundBytesPerPeer}
+         * @return this builder
+         */
         public Builder maxFrameBytes(int value) {
             maxFrameBytes = value;
             return this;
         }
 
+        /**
+         * Messages waiting for one peer (per lane). When full, a new message evicts the oldest of a
+         * lower criticality, or is refused when there is none; NONE and LOW messages dropped so
+         * are only counted, others are reported to their senders as undeliverable. Default 10,000.
+         *
+         * @param value messages, 1 to 10,000,000
+         * @return this builder
+         */
         public Builder queueCapacity(int value) {
             queueCapacity = value;
             return this;
         }
 
+        /**
+         * Messages written to one peer (per lane) and not yet acknowledged by its kernel, at most;
+         * beyond them, messages wait in the queue. Default 1,024.
+         *
+         * @param value messages, 4 to 1,048,576
+         * @return this builder
+         */
         public Builder windowMessages(int value) {
             windowMessages = value;
             return this;
         }
 
+        /**
+         * On an idle connection, a frame (a heartbeat) is sent at least this often, so the peer
+         * can tell a quiet link from a dead one. Default 500 ms.
+         *
+         * @param value &gt; 0, and at most half the heartbeat timeout
+         * @return this builder
+         */
         public Builder heartbeatInterval(Duration value) {
             heartbeatIntervalNs = value.toNanos();
             return this;
         }
 
+        /**
+         * How long a connection may stay silent (or its peer not read) before it is closed
+         * ({@link CloseReason#HEARTBEAT_TIMEOUT}, {@link CloseReason#NOT_READING}). Default 3 s.
+         *
+         * @param value at least twice the heartbeat interval, or a healthy idle peer looks dead
+         * @return this builder
+         */
         public Builder heartbeatTimeout(Duration value) {
             heartbeatTimeoutNs = value.toNanos();
             return this;
         }
 
+        /**
+         * How long a new connection has to complete its handshake (TLS included) before it is
+         * closed ({@link CloseReason#HANDSHAKE_TIMEOUT}). Default 2 s.
+         *
+         * @param value &gt; 0
+         * @return this builder
+         */
         public Builder handshakeTimeout(Duration value) {
             handshakeTimeoutNs = value.toNanos();
             return this;
         }
 
+        /**
+         * How long a dial waits for the TCP connection before it gives up and backs off. Default
+         * 2 s.
+         *
+         * @param value &gt; 0; used in whole milliseconds (at least 1)
+         * @return this builder
+         */
         public Builder connectTimeout(Duration value) {
             connectTimeoutNs = value.toNanos();
             return this;
         }
 
-        /** Redial delays: {@code initial}, doubling up to {@code max}, lowered by up to {@code jitter}. */
+        /**
+         * Redial delays after a lost or refused connection: {@code initial}, doubling up to
+         * {@code max}, each lowered by a random part of up to {@code jitter}. Default 50 ms
+         * doubling to 5 s, jitter 0.2.
+         *
+         * @param initial the first delay, &gt; 0
+         * @param max     the largest delay, at least {@code initial}
+         * @param jitter  the fraction a delay may be lowered by, in [0, 1)
+         * @return this builder
+         */
         public Builder reconnectBackoff(Duration initial, Duration max, double jitter) {
             reconnectInitialBackoffNs = initial.toNanos();
             reconnectMaxBackoffNs = max.toNanos();
@@ -321,46 +447,100 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
             return this;
         }
 
+        /**
+         * How long messages for a disconnected peer wait for it to come back before they are
+         * reported undeliverable and its profiles are unrouted. Default 10 s.
+         *
+         * @param value &gt; 0
+         * @return this builder
+         */
         public Builder peerDownGrace(Duration value) {
             peerDownGraceNs = value.toNanos();
             return this;
         }
 
-        /** NetworkTime: {@code burst} exchanges at connection, then one every {@code interval}. */
+        /**
+         * NetworkTime: {@code burst} exchanges at connection, then one every {@code interval}.
+         * Default 8 exchanges, then one per second.
+         *
+         * @param interval the time between exchanges with one peer, &gt; 0
+         * @param burst    exchanges in quick succession when a connection opens, 0 to 64
+         * @return this builder
+         */
         public Builder timeProbes(Duration interval, int burst) {
             timeProbeIntervalNs = interval.toNanos();
             timeProbeBurst = burst;
             return this;
         }
 
+        /**
+         * How many of a peer's latest exchanges NetworkTime's filter looks at. Default
+         * {@value NetworkTime#DEFAULT_WINDOW_SIZE}.
+         *
+         * @param value exchanges, 1 to 1,024
+         * @return this builder
+         */
         public Builder timeWindowSize(int value) {
             timeWindowSize = value;
             return this;
         }
 
+        /**
+         * Established connections (all lanes, all peers) beyond which new ones are refused.
+         * Default 64.
+         *
+         * @param value connections, 1 to 100,000
+         * @return this builder
+         */
         public Builder maxConnections(int value) {
             maxConnections = value;
             return this;
         }
 
+        /**
+         * How many times a message may be relayed through nodes whose routes point on (during a
+         * migration) before it is undeliverable. Default 4.
+         *
+         * @param value relays, 0 to 32 (0: never relayed)
+         * @return this builder
+         */
         public Builder maxHops(int value) {
             maxHops = value;
             return this;
         }
 
-        /** Connections in their handshake at once; a new one closes the oldest beyond this. */
+        /**
+         * Connections in their handshake at once; a new one beyond this closes the oldest pending
+         * one ({@link CloseReason#HANDSHAKE_EVICTED}). Default 16.
+         *
+         * @param value connections, 1 to 100,000
+         * @return this builder
+         */
         public Builder maxPendingHandshakes(int value) {
             maxPendingHandshakes = value;
             return this;
         }
 
-        /** Bytes waiting for, or unacknowledged by, one peer before its messages are shed or refused. */
+        /**
+         * Bytes of encoded messages waiting for, or unacknowledged by, one peer (per lane) before
+         * its messages are shed or refused like those beyond {@code queueCapacity}. Default 64 MiB.
+         *
+         * @param value bytes, from twice {@code maxFrameBytes} to 2^40
+         * @return this builder
+         */
         public Builder maxQueuedBytesPerPeer(long value) {
             maxQueuedBytesPerPeer = value;
             return this;
         }
 
-        /** Bytes of one peer's messages held in this node's queues before it stops reading from it. */
+        /**
+         * Bytes of one peer's messages held in this node's queues (not yet handled or passed on)
+         * before it stops reading from that peer until they drain, so TCP slows the peer down.
+         * Default 64 MiB.
+         *
+         * @param value bytes, from twice {@code maxFrameBytes} to 2^40
+         * @return this builder
+         */
         public Builder maxInboundBytesPerPeer(long value) {
             maxInboundBytesPerPeer = value;
             return this;
@@ -370,6 +550,11 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
          * The OS policy and priority of every lane's reader and writer threads ({@link
          * ThreadPolicy#NON_REALTIME} for ordinary threads), instead of the defaults that follow the
          * node's scheduler; {@link #bulkLaneThreads} then sets lane 1's apart.
+         *
+         * @param policy the policy; a real-time priority must be in 1..99 (checked by
+         *               {@link #build()})
+         * @return this builder
+         * @throws NullPointerException if {@code policy} is null
          */
         public Builder threads(ThreadPolicy policy) {
             threadPolicy = Objects.requireNonNull(policy, "policy");
@@ -377,7 +562,16 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
             return this;
         }
 
-        /** The OS policy and priority of lane 1's (LOW and NONE messages) reader and writer threads. */
+        /**
+         * The OS policy and priority of lane 1's (LOW and NONE messages) reader and writer threads,
+         * instead of the default: one real-time level above the lowest real-time dispatcher of a
+         * {@code RealtimeScheduler}, otherwise ordinary threads. Call it after {@link #threads}.
+         *
+         * @param policy the policy; a real-time priority must be in 1..99 (checked by
+         *               {@link #build()})
+         * @return this builder
+         * @throws NullPointerException if {@code policy} is null
+         */
         public Builder bulkLaneThreads(ThreadPolicy policy) {
             bulkThreadPolicy = Objects.requireNonNull(policy, "policy");
             return this;
@@ -387,6 +581,9 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
          * Connections per pair of nodes, 1 or 2 (default 2: HIGH and MIDDLE messages on lane 0, LOW
          * and NONE on lane 1). Every node of a deployment must use the same number: a peer with
          * another is refused at the handshake.
+         *
+         * @param value 1 or 2
+         * @return this builder
          */
         public Builder lanes(int value) {
             lanes = value;
@@ -398,13 +595,23 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
          * to CPUs where real-time threads work: starved there, a Java thread can hold the whole
          * JVM at a safepoint (seen with a SCHED_FIFO dispatcher spinning for the safepoint while
          * the pinned ordinary thread it waited for never ran).
+         *
+         * @param value the CPUs, or {@link CpuSet#inherit()} (default) to leave the affinity as
+         *              inherited; not null (checked by {@link #build()})
+         * @return this builder
          */
         public Builder threadCpus(CpuSet value) {
             cpus = value;
             return this;
         }
 
-        /** Which application profiles peers may announce to this node. */
+        /**
+         * Which application profiles peers may announce to this node. Default
+         * {@link AnnouncePolicy#any()}.
+         *
+         * @param value the policy; not null (checked by {@link #build()})
+         * @return this builder
+         */
         public Builder announcePolicy(AnnouncePolicy value) {
             announcePolicy = value;
             return this;
@@ -414,13 +621,23 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
          * Chooses plain TCP links beyond loopback on purpose: no peer is authenticated, so any host
          * that reaches the port can speak for any node. Only for an isolated network; the
          * messenger logs a warning when it starts so.
+         *
+         * @param value true to allow plain links beyond loopback; default false
+         * @return this builder
          */
         public Builder insecure(boolean value) {
             insecure = value;
             return this;
         }
 
-        /** The validated configuration. */
+        /**
+         * The validated configuration. The builder may be used again afterwards.
+         *
+         * @return the configuration
+         * @throws NullPointerException     if a required setting was set to null, naming it
+         * @throws IllegalArgumentException naming the first setting out of range, its value and the
+         *                                  range (see each setter)
+         */
         public NetworkConfig build() {
             return new NetworkConfig(listenAddress, peers, connectionFactory, codec, maxFrameBytes,
                     queueCapacity, windowMessages, heartbeatIntervalNs, heartbeatTimeoutNs, handshakeTimeoutNs,

@@ -70,9 +70,15 @@ public final class NetworkMessenger implements AutoCloseable {
     }
 
     /**
-     * Starts a messenger for {@code kernel}: binds the listen address, dials the peers.
+     * Starts a messenger for {@code kernel}: binds the listen address, dials the peers. Returns
+     * once it listens; connections come up in the background ({@link #awaitConnected}).
      *
-     * @throws UncheckedIOException if the listen address cannot be bound
+     * @param kernel the node to join to others; an {@link EtherwareNode} closes the messenger
+     *               when it closes
+     * @param config the validated configuration
+     * @return the running messenger
+     * @throws UncheckedIOException if the listen address cannot be bound, or the factory's
+     *                              credentials name another node than {@code kernel}'s
      */
     public static NetworkMessenger start(Kernel kernel, NetworkConfig config) {
         Objects.requireNonNull(kernel, "kernel");
@@ -94,35 +100,67 @@ public final class NetworkMessenger implements AutoCloseable {
         return messenger;
     }
 
-    /** The address this node accepts connections on (with the actual port if 0 was configured). */
+    /**
+     * The address this node accepts connections on.
+     *
+     * @return the bound address, with the actual port if 0 was configured
+     */
     public InetSocketAddress localAddress() {
         return engine.localAddress();
     }
 
-    /** Dials another node from now on and keeps it connected. */
+    /**
+     * Dials another node from now on and keeps it connected (one connection per lane). Does not
+     * wait for the connection.
+     *
+     * @param address the other node's listen address
+     * @throws IllegalStateException if the messenger is closed
+     */
     public void addPeer(InetSocketAddress address) {
         engine.addPeer(Objects.requireNonNull(address, "address"));
     }
 
-    /** Waits until node {@code nodeId} is connected, every lane; false on timeout. */
+    /**
+     * Waits until node {@code nodeId} is connected, every lane. Blocks the caller: not for a
+     * dispatcher thread.
+     *
+     * @param nodeId  the other node's id
+     * @param timeout how long to wait at most
+     * @return true once connected, false on timeout
+     * @throws InterruptedException if the caller is interrupted while waiting
+     */
     public boolean awaitConnected(String nodeId, Duration timeout) throws InterruptedException {
         return engine.awaitConnected(nodeId, timeout);
     }
 
     /**
-     * Waits until {@code profile} resolves on this node (locally, or announced by a peer); false
-     * on timeout.
+     * Waits until {@code profile} resolves on this node (locally, or announced by a peer). Blocks
+     * the caller: not for a dispatcher thread.
+     *
+     * @param profile the profile, exact or a query
+     * @param timeout how long to wait at most
+     * @return true once it resolves, false on timeout
+     * @throws InterruptedException if the caller is interrupted while waiting
      */
     public boolean awaitResolvable(Profile profile, Duration timeout) throws InterruptedException {
         return engine.awaitResolvable(profile, timeout);
     }
 
-    /** The peers known to this node, connected or not, by node id. */
+    /**
+     * The peers known to this node, connected or not.
+     *
+     * @return a snapshot of each, sorted by node id
+     */
     public List<PeerStatus> peers() {
         return engine.peers();
     }
 
-    /** One peer, if known. */
+    /**
+     * One peer, if known.
+     *
+     * @param nodeId the peer's node id
+     * @return a snapshot of it, or empty if it is not among {@link #peers()}
+     */
     public Optional<PeerStatus> peer(String nodeId) {
         return engine.peerStatus(nodeId);
     }
@@ -130,12 +168,20 @@ public final class NetworkMessenger implements AutoCloseable {
     /**
      * A route to node {@code nodeId} for any profile, e.g. to relocate a component there
      * ({@link Kernel#relocateAsync}). Its messages wait for the node like any other.
+     *
+     * @param nodeId another node's id
+     * @return a route that queues messages for that node
+     * @throws IllegalArgumentException if {@code nodeId} is not a valid node id or is this node's
      */
     public RemoteRoute routeTo(String nodeId) {
         return engine.routeTo(nodeId);
     }
 
-    /** The clock offsets to the peers, and the time stamp translation. */
+    /**
+     * The clock offsets to the peers, and the time stamp translation.
+     *
+     * @return this messenger's NetworkTime, fed by its exchanges
+     */
     public NetworkTime networkTime() {
         return engine.networkTime();
     }
@@ -143,6 +189,8 @@ public final class NetworkMessenger implements AutoCloseable {
     /**
      * The OS policy the reader and writer threads of lane 0 (HIGH and MIDDLE messages) ask for; see
      * {@link #ioThreadPolicy(int)}.
+     *
+     * @return {@code ioThreadPolicy(0)}
      */
     public ThreadPolicy ioThreadPolicy() {
         return engine.ioThreadPolicy(0);
@@ -154,12 +202,20 @@ public final class NetworkMessenger implements AutoCloseable {
      * or by default, with the node's {@code RealtimeScheduler}, one real-time level above its
      * highest dispatcher (lane 0) or its lowest real-time one (lane 1); ordinary threads with
      * another scheduler.
+     *
+     * @param lane 0, or 1 when {@link NetworkConfig#lanes()} is 2
+     * @return the policy requested (the OS may refuse it; the platform then warns once)
+     * @throws IllegalArgumentException if there is no such lane
      */
     public ThreadPolicy ioThreadPolicy(int lane) {
         return engine.ioThreadPolicy(lane);
     }
 
-    /** The counters now. */
+    /**
+     * The counters now.
+     *
+     * @return a snapshot; each counter exact, not read atomically together
+     */
     public NetworkStats stats() {
         return engine.stats();
     }

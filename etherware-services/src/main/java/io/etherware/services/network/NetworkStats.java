@@ -35,16 +35,30 @@ public record NetworkStats(String nodeId, int connectedPeers, long messagesSent,
                            long connectionsOpened, long handshakesFailed, Map<CloseReason, Long> closes,
                            long announcementsRefused, long inboundPauses) {
 
+    /**
+     * Copies {@code closes}.
+     *
+     * @throws NullPointerException if {@code closes} is null or holds null
+     */
     public NetworkStats {
         closes = Map.copyOf(closes);
     }
 
-    /** Connections ended for {@code reason}. */
+    /**
+     * Connections ended for one reason.
+     *
+     * @param reason the reason
+     * @return how many connections ended so, 0 if none
+     */
     public long closes(CloseReason reason) {
         return closes.getOrDefault(reason, 0L);
     }
 
-    /** Connections closed because the peer broke the protocol. */
+    /**
+     * Connections closed because the peer broke the protocol.
+     *
+     * @return the sum of {@link #closes} over the reasons that are {@link CloseReason#isBadInput()}
+     */
     public long badInputCloses() {
         long sum = 0;
         for (Map.Entry<CloseReason, Long> entry : closes.entrySet()) {

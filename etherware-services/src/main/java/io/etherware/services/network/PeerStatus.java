@@ -21,6 +21,11 @@ import java.util.Set;
 public record PeerStatus(String nodeId, boolean connected, Optional<String> remote, int queued, int inFlight,
                          Set<Profile> profiles, Optional<PeerTime> time) {
 
+    /**
+     * Copies {@code profiles}.
+     *
+     * @throws NullPointerException if {@code profiles} is null or holds null
+     */
     public PeerStatus {
         profiles = Set.copyOf(profiles);
     }

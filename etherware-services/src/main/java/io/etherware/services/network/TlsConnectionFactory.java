@@ -54,8 +54,14 @@ public final class TlsConnectionFactory implements ConnectionFactory {
 
     /**
      * A factory from PKCS#12 files: {@code keyStore} holds exactly one private key with this
-     * node's certificate chain, {@code trustStore} the deployment CA's certificate.
+     * node's certificate chain, {@code trustStore} the deployment CA's certificate. Reads the files
+     * now; call it at configuration time.
      *
+     * @param keyStore           this node's PKCS#12 key store (CN of the certificate = node id)
+     * @param keyStorePassword   the key store's (and key's) password
+     * @param trustStore         the PKCS#12 trust store with the deployment CA's certificate
+     * @param trustStorePassword the trust store's password
+     * @return the factory
      * @throws IOException naming the file and what was wrong with it
      */
     public static TlsConnectionFactory fromPkcs12(Path keyStore, char[] keyStorePassword, Path trustStore,
@@ -68,8 +74,13 @@ public final class TlsConnectionFactory implements ConnectionFactory {
     /**
      * A factory from loaded key stores (e.g. made in memory by a test).
      *
+     * @param keyStore    holds exactly one private key, with this node's certificate chain
+     * @param keyPassword the password of that key
+     * @param trustStore  holds the deployment CA's certificate as a trusted entry
+     * @return the factory
      * @throws IOException if the key store does not hold exactly one key whose certificate names a
-     *                     node id, or the trust store holds no certificate
+     *                     node id, the trust store holds no certificate, or TLS cannot be set up
+     *                     with them (a wrong key password, say)
      */
     public static TlsConnectionFactory of(KeyStore keyStore, char[] keyPassword, KeyStore trustStore)
             throws IOException {
@@ -129,6 +140,8 @@ public final class TlsConnectionFactory implements ConnectionFactory {
     /**
      * The node id a certificate names: its subject's single CN, which must be a valid node id.
      *
+     * @param certificate a node's certificate
+     * @return the CN of its subject
      * @throws SSLPeerUnverifiedException if there is no such CN
      */
     public static String nodeIdOf(X509Certificate certificate) throws SSLPeerUnverifiedException {

@@ -87,7 +87,14 @@ public final class Notifier implements AutoCloseable {
     private volatile boolean closed;
     private volatile ThreadGrant grant;
 
-    /** A Notifier sending through {@code kernel} on the kernel's clock; not started. */
+    /**
+     * A Notifier sending through {@code kernel} on the kernel's clock; not started: its thread
+     * starts with {@link #start()}.
+     *
+     * @param kernel the kernel the Ticks are sent through; its clock is the release clock
+     * @param config how the Notifier runs; its profile, if null, becomes {@link #profileFor(String)}
+     *               of the kernel's node id
+     */
     public Notifier(Kernel kernel, NotifierConfig config) {
         this(kernel, config, kernel.clock(), null);
     }
@@ -116,6 +123,10 @@ public final class Notifier implements AutoCloseable {
      * Creates a Notifier for {@code node}, registers its component under {@link #profile()}, and
      * ties its life to the node's: it starts with the component (at the node's start, or now if
      * the node runs) and closes when the node closes.
+     *
+     * @param node   the node to serve
+     * @param config how the Notifier runs
+     * @return the Notifier, already registered with {@code node}
      */
     public static Notifier install(EtherwareNode node, NotifierConfig config) {
         var notifier = new Notifier(node, config);
@@ -124,7 +135,12 @@ public final class Notifier implements AutoCloseable {
         return notifier;
     }
 
-    /** {@code etherware.notifier[node=<nodeId>]}: the default profile of a node's Notifier. */
+    /**
+     * The default profile of a node's Notifier.
+     *
+     * @param nodeId the node's id
+     * @return {@code etherware.notifier[node=<nodeId>]}
+     */
     public static Profile profileFor(String nodeId) {
         return Profile.of(ROLE, "node", nodeId);
     }
@@ -136,6 +152,8 @@ public final class Notifier implements AutoCloseable {
      * node calls it for its own registry ({@code node.contentsTypes()}). Idempotent.
      *
      * @param types the registry to add the Notifier's types to
+     * @throws IllegalArgumentException if {@code types} already has one of those names or records
+     *                                  under another partner
      */
     public static void registerContents(ContentsTypes types) {
         types.register("notifier.subscribe", TickSubscribe.class);
@@ -144,11 +162,21 @@ public final class Notifier implements AutoCloseable {
         types.register("notifier.reply", NotifierReply.class);
     }
 
-    /** The profile of this Notifier's component, and the sender of its Ticks. */
+    /**
+     * The profile of this Notifier's component, and the sender of its Ticks.
+     *
+     * @return {@link NotifierConfig#profile()}, or {@link #profileFor(String)} of the node when that
+     *         is null
+     */
     public Profile profile() {
         return profile;
     }
 
+    /**
+     * The configuration this Notifier was made with.
+     *
+     * @return the configuration, as given (its profile may be null; see {@link #profile()})
+     */
     public NotifierConfig config() {
         return config;
     }
@@ -156,6 +184,9 @@ public final class Notifier implements AutoCloseable {
     /**
      * The message interface, to register under {@link #profile()} (one instance: restarts and
      * the factory return the same). Its {@code onStart} starts the Notifier.
+     *
+     * @return the component that serves {@link TickSubscribe}, {@link TickUnsubscribe} and
+     *         {@link TickRetarget}
      */
     public Component component() {
         return component;
@@ -166,8 +197,10 @@ public final class Notifier implements AutoCloseable {
     /**
      * Starts the Notifier thread and waits until it has configured its OS priority; idempotent.
      * Subscriptions made before start release from then on (releases already past are skipped
-     * and counted like any overrun).
+     * and counted like any overrun). Blocks the caller for at most 10 s while the thread starts;
+     * if it has not reported by then, a warning is logged and the Notifier runs on.
      *
+     * @return this Notifier
      * @throws IllegalStateException if the Notifier was closed
      */
     public Notifier start() {
@@ -196,11 +229,20 @@ public final class Notifier implements AutoCloseable {
         return this;
     }
 
+    /**
+     * Whether the Notifier thread is releasing Ticks.
+     *
+     * @return true from {@link #start()} until {@link #close()}, or until the thread failed
+     */
     public boolean isRunning() {
         return running;
     }
 
-    /** What the OS granted the Notifier thread; empty before {@link #start()} has configured it. */
+    /**
+     * What the OS granted the Notifier thread: policy, priority, CPUs and any refusal.
+     *
+     * @return the grant, or empty before {@link #start()} has configured the thread
+     */
     public Optional<ThreadGrant> threadGrant() {
         return Optional.ofNullable(grant);
     }
@@ -244,6 +286,7 @@ public final class Notifier implements AutoCloseable {
      * period from now (periodic) or now (one-shot) when unset. A periodic {@code t0} in the past
      * keeps its phase: the first release is the first grid point not before now.
      *
+     * @param subscription what to release; its name must not be in use on this Notifier
      * @return the subscription as added, with its first release resolved
      * @throws IllegalArgumentException if a subscription of that name exists
      * @throws IllegalStateException    if the Notifier was closed
@@ -269,8 +312,10 @@ public final class Notifier implements AutoCloseable {
     }
 
     /**
-     * Removes a subscription: no Tick of it goes out after this returns.
+     * Removes a subscription: no Tick of it goes out after this returns. May wait, briefly, for a
+     * Tick of it that the Notifier thread is sending at that moment.
      *
+     * @param name the subscription's name
      * @return its final accounting, or empty if no subscription has that name
      */
     public Optional<SubscriptionStats> unsubscribe(String name) {
@@ -286,8 +331,10 @@ public final class Notifier implements AutoCloseable {
     /**
      * Sends a subscription's Ticks to {@code newTarget} from its next release on, keeping its
      * release times and sequence (migration moves a component without breaking its rhythm). No
-     * Tick goes to the old target after this returns.
+     * Tick goes to the old target after this returns (it may wait, briefly, for a Tick being sent).
      *
+     * @param name      the subscription's name
+     * @param newTarget the profile its Ticks go to from now on
      * @throws IllegalArgumentException if no subscription has that name
      */
     public void retarget(String name, Profile newTarget) {
@@ -301,20 +348,33 @@ public final class Notifier implements AutoCloseable {
         schedule.awaitNotSending(state);
     }
 
-    /** One subscription's accounting now; empty if no subscription has that name. */
+    /**
+     * One subscription's accounting now.
+     *
+     * @param name the subscription's name
+     * @return its accounting, or empty if no subscription has that name
+     */
     public Optional<SubscriptionStats> stats(String name) {
         SubscriptionState state = subscriptions.get(Objects.requireNonNull(name, "name"));
         return state == null ? Optional.empty() : Optional.of(state.stats());
     }
 
-    /** Every current subscription's accounting, in no particular order. */
+    /**
+     * Every current subscription's accounting.
+     *
+     * @return a new list, in no particular order; a one-shot that has fired is no longer in it
+     */
     public List<SubscriptionStats> stats() {
         var all = new ArrayList<SubscriptionStats>();
         subscriptions.values().forEach(state -> all.add(state.stats()));
         return all;
     }
 
-    /** The current subscriptions, in no particular order. */
+    /**
+     * The current subscriptions.
+     *
+     * @return a new list, in no particular order, with each subscription's current target
+     */
     public List<Subscription> subscriptions() {
         var all = new ArrayList<Subscription>();
         subscriptions.values().forEach(state -> all.add(state.subscription()));
@@ -324,6 +384,8 @@ public final class Notifier implements AutoCloseable {
     /**
      * Undeliverable notices the kernel returned to the Notifier's component for Ticks it could
      * not deliver after all (the target vanished between resolution and delivery).
+     *
+     * @return the count since construction
      */
     public long undeliverableNotices() {
         return undeliverableNotices.get();
@@ -386,7 +448,12 @@ public final class Notifier implements AutoCloseable {
         }
     }
 
-    /** How the Notifier's thread sleeps to a release, for reports: parks only, or parks then sleeps in the kernel. */
+    /**
+     * How the Notifier's thread sleeps to a release, for reports.
+     *
+     * @return a short description: parks only, or parks and then sleeps in the kernel for the last
+     *         stretch
+     */
     public String sleepMethod() {
         return sleepMethod;
     }

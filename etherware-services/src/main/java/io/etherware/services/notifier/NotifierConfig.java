@@ -51,6 +51,14 @@ public record NotifierConfig(Profile profile, ThreadPolicy threadPolicy, CpuSet 
     private static final NotifierConfig DEFAULTS = new NotifierConfig(null, ThreadPolicy.fifo(DEFAULT_PRIORITY),
             CpuSet.inherit(), 0, DEFAULT_THREAD_NAME, true);
 
+    /**
+     * Checks every field.
+     *
+     * @throws NullPointerException     if {@code threadPolicy}, {@code cpus} or {@code threadName} is
+     *                                  null
+     * @throws IllegalArgumentException if a real-time priority is outside 1..99, {@code spinNs}
+     *                                  outside 0..{@value #MAX_SPIN_NS}, or {@code threadName} blank
+     */
     public NotifierConfig {
         Objects.requireNonNull(threadPolicy, "threadPolicy");
         Objects.requireNonNull(cpus, "cpus");
@@ -70,7 +78,12 @@ public record NotifierConfig(Profile profile, ThreadPolicy threadPolicy, CpuSet 
         }
     }
 
-    /** SCHED_FIFO {@value #DEFAULT_PRIORITY}, every CPU, no spin, the node's default profile. */
+    /**
+     * The defaults: SCHED_FIFO {@value #DEFAULT_PRIORITY}, every CPU, no spin, kernel sleep where
+     * usable, the node's default profile, thread {@value #DEFAULT_THREAD_NAME}.
+     *
+     * @return the shared default configuration
+     */
     public static NotifierConfig defaults() {
         return DEFAULTS;
     }
@@ -79,33 +92,78 @@ public record NotifierConfig(Profile profile, ThreadPolicy threadPolicy, CpuSet 
      * The defaults, but two real-time levels above the highest dispatcher of {@code rule} (at most
      * 99), with the same policy; {@link ThreadPolicy#NON_REALTIME} when no dispatcher of the rule
      * is real-time.
+     *
+     * @param rule the dispatchers' scheduling rule, normally the node's scheduler's
+     * @return the defaults with that thread policy
      */
     public static NotifierConfig above(ThreadSchedulingRule rule) {
         Objects.requireNonNull(rule, "rule");
         return DEFAULTS.withThreadPolicy(rule.above(2));
     }
 
+    /**
+     * This configuration under another profile.
+     *
+     * @param newProfile the profile of the Notifier's component and sender of its Ticks, or null
+     *                   for {@link Notifier#profileFor(String)} of the node
+     * @return a copy with that profile
+     */
     public NotifierConfig withProfile(Profile newProfile) {
         return new NotifierConfig(newProfile, threadPolicy, cpus, spinNs, threadName, kernelSleep);
     }
 
+    /**
+     * This configuration asking for another OS policy for the Notifier thread.
+     *
+     * @param newThreadPolicy the policy and priority (real-time priorities 1..99), or
+     *                        {@link ThreadPolicy#NON_REALTIME} to ask for nothing
+     * @return a copy with that policy
+     * @throws IllegalArgumentException if a real-time priority is outside 1..99
+     */
     public NotifierConfig withThreadPolicy(ThreadPolicy newThreadPolicy) {
         return new NotifierConfig(profile, newThreadPolicy, cpus, spinNs, threadName, kernelSleep);
     }
 
+    /**
+     * This configuration with the Notifier thread on other CPUs.
+     *
+     * @param newCpus the CPUs, or {@link CpuSet#inherit()} (default) to leave the affinity as inherited
+     * @return a copy with those CPUs
+     */
     public NotifierConfig withCpus(CpuSet newCpus) {
         return new NotifierConfig(profile, threadPolicy, newCpus, spinNs, threadName, kernelSleep);
     }
 
+    /**
+     * This configuration spinning for the last {@code newSpinNs} before each release.
+     *
+     * @param newSpinNs the spin in nanoseconds, 0..{@value #MAX_SPIN_NS} (0, the default: no spin)
+     * @return a copy with that spin
+     * @throws IllegalArgumentException if {@code newSpinNs} is out of range
+     */
     public NotifierConfig withSpinNs(long newSpinNs) {
         return new NotifierConfig(profile, threadPolicy, cpus, newSpinNs, threadName, kernelSleep);
     }
 
+    /**
+     * This configuration naming the Notifier thread differently (e.g. one Notifier per node in
+     * one JVM).
+     *
+     * @param newThreadName the name, not blank; default {@value #DEFAULT_THREAD_NAME}
+     * @return a copy with that name
+     * @throws IllegalArgumentException if {@code newThreadName} is blank
+     */
     public NotifierConfig withThreadName(String newThreadName) {
         return new NotifierConfig(profile, threadPolicy, cpus, spinNs, newThreadName, kernelSleep);
     }
 
-    /** This configuration sleeping in the kernel to each release time ({@code true}) or only parking. */
+    /**
+     * This configuration sleeping in the kernel to each release time or only parking.
+     *
+     * @param newKernelSleep true (default) to sleep the last stretch with
+     *                       {@code clock_nanosleep(TIMER_ABSTIME)} where usable, false to only park
+     * @return a copy with that choice
+     */
     public NotifierConfig withKernelSleep(boolean newKernelSleep) {
         return new NotifierConfig(profile, threadPolicy, cpus, spinNs, threadName, newKernelSleep);
     }

@@ -38,6 +38,14 @@ public record Subscription(String name, Profile target, QoS qos, long firstRelea
     /** Longest subscription name. */
     public static final int MAX_NAME_LENGTH = 256;
 
+    /**
+     * Checks every field.
+     *
+     * @throws NullPointerException     if {@code name}, {@code target} or {@code qos} is null
+     * @throws IllegalArgumentException if the name is blank, too long or has control characters, or
+     *                                  {@code maxLatenessNs} is outside 1..period (periodic) or not 0
+     *                                  (one-shot)
+     */
     public Subscription {
         requireValidName(name);
         Objects.requireNonNull(target, "target");
@@ -55,7 +63,15 @@ public record Subscription(String name, Profile target, QoS qos, long firstRelea
 
     /**
      * Ticks every {@code periodNs} to {@code target}, with QoS criticality {@code criticality},
-     * period and deadline {@code periodNs}, first release one period after subscribing.
+     * period and deadline {@code periodNs}, first release one period after subscribing, lateness
+     * limit half a period, back-pressure on.
+     *
+     * @param name        the subscription's name, unique on its Notifier
+     * @param target      where the Ticks go
+     * @param criticality the Ticks' criticality
+     * @param periodNs    the period in nanoseconds, &gt; 0
+     * @return the subscription
+     * @throws IllegalArgumentException if {@code periodNs} &lt;= 0 or the name is not valid
      */
     public static Subscription periodic(String name, Profile target, Criticality criticality, long periodNs) {
         Objects.requireNonNull(criticality, "criticality");
@@ -69,49 +85,102 @@ public record Subscription(String name, Profile target, QoS qos, long firstRelea
     /**
      * One Tick to {@code target} at {@code releaseNs} on the Notifier's monotonic clock (at once if
      * that is past), with QoS criticality {@code criticality} and no deadline.
+     *
+     * @param name        the subscription's name, unique on its Notifier
+     * @param target      where the Tick goes
+     * @param criticality the Tick's criticality
+     * @param releaseNs   the release on the Notifier's monotonic clock (nanoseconds), or
+     *                    {@link #UNSET} for at once
+     * @return the subscription
+     * @throws IllegalArgumentException if the name is not valid
      */
     public static Subscription oneShot(String name, Profile target, Criticality criticality, long releaseNs) {
         Objects.requireNonNull(criticality, "criticality");
         return new Subscription(name, target, QoS.of(criticality), releaseNs, 0, true);
     }
 
-    /** Whether this is a one-shot subscription. */
+    /**
+     * Whether this is a one-shot subscription.
+     *
+     * @return true if its QoS has no period
+     */
     public boolean isOneShot() {
         return !qos.hasPeriod();
     }
 
-    /** The period in nanoseconds, 0 for a one-shot. */
+    /**
+     * The period of the releases.
+     *
+     * @return the period in nanoseconds, 0 for a one-shot
+     */
     public long periodNs() {
         return qos.periodNs();
     }
 
-    /** This subscription with its first release at {@code releaseNs} (periodic: {@code t0}). */
+    /**
+     * This subscription with its first release at another time.
+     *
+     * @param releaseNs the first release (periodic: {@code t0} of the grid) on the Notifier's
+     *                  monotonic clock, in nanoseconds
+     * @return a copy starting then
+     */
     public Subscription startingAt(long releaseNs) {
         return new Subscription(name, target, qos, releaseNs, maxLatenessNs, backPressure);
     }
 
-    /** This subscription with each Tick's relative deadline set to {@code deadlineNs} (0: none). */
+    /**
+     * This subscription with another relative deadline in each Tick's QoS.
+     *
+     * @param deadlineNs the deadline after each release, in nanoseconds; 0 for none
+     * @return a copy with that deadline
+     * @throws IllegalArgumentException if {@code deadlineNs} is negative
+     */
     public Subscription withDeadlineNs(long deadlineNs) {
         return new Subscription(name, target, qos.withDeadlineNs(deadlineNs), firstReleaseNs, maxLatenessNs,
                 backPressure);
     }
 
-    /** This subscription with the receiver's worst-case handling time in each Tick's QoS. */
+    /**
+     * This subscription with the receiver's worst-case handling time in each Tick's QoS.
+     *
+     * @param wcetNs the worst-case handling time in nanoseconds; 0 for unknown
+     * @return a copy with that handling time
+     * @throws IllegalArgumentException if {@code wcetNs} is negative
+     */
     public Subscription withWcetNs(long wcetNs) {
         return new Subscription(name, target, qos.withWcetNs(wcetNs), firstReleaseNs, maxLatenessNs, backPressure);
     }
 
-    /** This subscription with another lateness limit (periodic only; see {@link #maxLatenessNs}). */
+    /**
+     * This subscription with another lateness limit (see {@link #maxLatenessNs}).
+     *
+     * @param newMaxLatenessNs the limit in nanoseconds: 1..period for a periodic subscription, 0
+     *                         for a one-shot
+     * @return a copy with that limit
+     * @throws IllegalArgumentException if {@code newMaxLatenessNs} is out of range
+     */
     public Subscription withMaxLatenessNs(long newMaxLatenessNs) {
         return new Subscription(name, target, qos, firstReleaseNs, newMaxLatenessNs, backPressure);
     }
 
-    /** This subscription with back-pressure on or off (see {@link #backPressure}). */
+    /**
+     * This subscription with back-pressure on or off (see {@link #backPressure}).
+     *
+     * @param enabled true to skip releases while the local target has not finished a message since
+     *                the previous Tick
+     * @return a copy with that setting
+     */
     public Subscription withBackPressure(boolean enabled) {
         return new Subscription(name, target, qos, firstReleaseNs, maxLatenessNs, enabled);
     }
 
-    /** This subscription sending to another profile. */
+    /**
+     * This subscription sending to another profile; to move a running subscription, use
+     * {@link Notifier#retarget}.
+     *
+     * @param newTarget the profile the Ticks go to
+     * @return a copy with that target
+     */
     public Subscription withTarget(Profile newTarget) {
         return new Subscription(name, newTarget, qos, firstReleaseNs, maxLatenessNs, backPressure);
     }

@@ -24,17 +24,30 @@ import org.HdrHistogram.Histogram;
 public record SubscriptionStats(Subscription subscription, long ticksSent, long skippedLate, long skippedBusy,
                                 long skippedUndeliverable, long nextSequence, Histogram latenessNs) {
 
+    /**
+     * Checks that the subscription and the histogram are given.
+     *
+     * @throws NullPointerException if {@code subscription} or {@code latenessNs} is null
+     */
     public SubscriptionStats {
         Objects.requireNonNull(subscription, "subscription");
         Objects.requireNonNull(latenessNs, "latenessNs");
     }
 
-    /** The subscription's name. */
+    /**
+     * The subscription's name.
+     *
+     * @return {@code subscription().name()}
+     */
     public String name() {
         return subscription.name();
     }
 
-    /** Every release that was not sent, for whatever reason. */
+    /**
+     * Every release that was not sent, for whatever reason.
+     *
+     * @return {@code skippedLate + skippedBusy + skippedUndeliverable}
+     */
     public long skippedReleases() {
         return skippedLate + skippedBusy + skippedUndeliverable;
     }

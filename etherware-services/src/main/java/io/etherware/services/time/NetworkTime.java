@@ -45,16 +45,24 @@ public final class NetworkTime {
         }
     }
 
-    /** With the default window and drift span. */
+    /**
+     * NetworkTime with the default window ({@value #DEFAULT_WINDOW_SIZE} exchanges) and drift span
+     * (1 s).
+     *
+     * @param clock this node's clock
+     */
     public NetworkTime(NodeClock clock) {
         this(clock, DEFAULT_WINDOW_SIZE, DEFAULT_MIN_DRIFT_SPAN);
     }
 
     /**
+     * NetworkTime with its own filter settings.
+     *
      * @param clock          this node's clock
      * @param windowSize     exchanges the filter looks at, 1 to 1024
      * @param minDriftSpan   the shortest time the well-measured exchanges must span before a
      *                       drift is fitted; at least 1 ms
+     * @throws IllegalArgumentException if {@code windowSize} or {@code minDriftSpan} is out of range
      */
     public NetworkTime(NodeClock clock, int windowSize, Duration minDriftSpan) {
         this.clock = Objects.requireNonNull(clock, "clock");
@@ -69,7 +77,11 @@ public final class NetworkTime {
         this.minDriftSpanNs = minDriftSpan.toNanos();
     }
 
-    /** This node's clock. */
+    /**
+     * This node's clock.
+     *
+     * @return the clock given at construction; its epoch time is the local side of every offset
+     */
     public NodeClock clock() {
         return clock;
     }
@@ -78,6 +90,10 @@ public final class NetworkTime {
      * A first guess from a handshake, used until the first exchange: the peer's clock read when it
      * sent, against the local clock when it arrived (off by the one-way delay). Ignored once
      * exchanges have been measured.
+     *
+     * @param nodeId       the peer
+     * @param peerEpochNs  the peer's epoch clock when it sent its handshake, in nanoseconds
+     * @param localEpochNs this node's epoch clock when the handshake arrived, in nanoseconds
      */
     public void onHandshake(String nodeId, long peerEpochNs, long localEpochNs) {
         PeerClock peer = peers.computeIfAbsent(nodeId, PeerClock::new);
@@ -89,8 +105,11 @@ public final class NetworkTime {
     }
 
     /**
-     * Adds one exchange with {@code nodeId}.
+     * Adds one exchange with {@code nodeId}. Called by the transport, on the thread that received
+     * the reply; serialized per peer.
      *
+     * @param nodeId the peer
+     * @param sample the exchange's four time stamps
      * @return the new estimate, or empty if the exchange was impossible (negative round trip)
      */
     public Optional<PeerTime> onExchange(String nodeId, TimeSample sample) {
@@ -105,18 +124,32 @@ public final class NetworkTime {
         }
     }
 
-    /** Forgets a peer, e.g. because it restarted with a new clock. */
+    /**
+     * Forgets a peer, e.g. because it restarted with a new clock; its time stamps pass unchanged
+     * until it is measured again.
+     *
+     * @param nodeId the peer
+     */
     public void forget(String nodeId) {
         peers.remove(nodeId);
     }
 
-    /** The current estimate for a peer, if there is one. */
+    /**
+     * The current estimate for a peer. Lock-free.
+     *
+     * @param nodeId the peer
+     * @return its estimate, or empty if neither a handshake nor an exchange is known
+     */
     public Optional<PeerTime> peer(String nodeId) {
         PeerClock peer = peers.get(nodeId);
         return peer == null ? Optional.empty() : Optional.ofNullable(peer.estimate);
     }
 
-    /** The estimates of all peers, by node id. */
+    /**
+     * The estimates of all peers.
+     *
+     * @return a new list, sorted by node id
+     */
     public List<PeerTime> peers() {
         var all = new ArrayList<PeerTime>();
         for (PeerClock peer : peers.values()) {
@@ -131,7 +164,11 @@ public final class NetworkTime {
 
     /**
      * A time of {@code nodeId}'s epoch clock on this node's epoch clock. Unchanged if nothing is
-     * known of that peer yet.
+     * known of that peer yet. Lock-free.
+     *
+     * @param nodeId      the peer whose clock {@code peerEpochNs} is on
+     * @param peerEpochNs a time of the peer's epoch clock, in nanoseconds
+     * @return the same instant on this node's epoch clock, in nanoseconds
      */
     public long toLocal(String nodeId, long peerEpochNs) {
         PeerClock peer = peers.get(nodeId);
@@ -144,7 +181,13 @@ public final class NetworkTime {
         return peerEpochNs - estimate.offsetAt(roughLocalNs);
     }
 
-    /** {@code message} from {@code nodeId} with its time stamp on this node's clock. */
+    /**
+     * {@code message} from {@code nodeId} with its time stamp on this node's clock. Lock-free.
+     *
+     * @param nodeId  the peer the message came from
+     * @param message the message as the peer stamped it
+     * @return a copy of the message with the translated time stamp
+     */
     public Message toLocal(String nodeId, Message message) {
         return message.withTimeStamp(toLocal(nodeId, message.timeStamp()));
     }

@@ -21,12 +21,21 @@ package io.etherware.services.time;
 public record PeerTime(String nodeId, long offsetNs, long atEpochNs, double driftPpm, long roundTripNs,
                        long uncertaintyNs, int samples) {
 
-    /** The estimated offset at local epoch time {@code localEpochNs}, extrapolated with the drift. */
+    /**
+     * The estimated offset at local epoch time {@code localEpochNs}, extrapolated with the drift.
+     *
+     * @param localEpochNs a time of this node's epoch clock, in nanoseconds
+     * @return peer epoch clock minus local epoch clock at that time, in nanoseconds
+     */
     public long offsetAt(long localEpochNs) {
         return offsetNs + Math.round(driftPpm * 1e-6 * (localEpochNs - atEpochNs));
     }
 
-    /** Whether at least one exchange has been measured (otherwise the offset is a guess). */
+    /**
+     * Whether at least one exchange has been measured.
+     *
+     * @return true if {@code samples > 0}; false while the offset is the handshake's guess
+     */
     public boolean isMeasured() {
         return samples > 0;
     }
