@@ -26,6 +26,10 @@ public final class CriticalityDeadlinePlacement implements JobPlacementRule {
     /** The dispatcher of LOW messages: SCHED_FIFO {@value ThreadSchedulingRule#LOW_PRIORITY} in Table II. */
     public static final int LOW_DISPATCHER = 3;
 
+    /** The rule; it holds no state, so one instance may serve any number of schedulers. */
+    public CriticalityDeadlinePlacement() {
+    }
+
     @Override
     public Placement place(Job job, long nowNs) {
         QoS qos = job.message().qos();

@@ -21,8 +21,9 @@
  * }
  * }</pre>
  *
- * <p>The messages they exchange and the controller's state are records registered by
- * {@link io.etherware.pendulum.components.PendulumContents#register()}, so they travel as XML
+ * <p>The messages they exchange and the controller's state are records that the code building a node registers on it with
+ * {@link io.etherware.pendulum.components.PendulumContents#register(io.etherware.core.message.ContentsTypes)},
+ * so they travel as XML
  * between nodes and an upgrade or a migration can carry the controller's state.
  */
 package io.etherware.pendulum.components;

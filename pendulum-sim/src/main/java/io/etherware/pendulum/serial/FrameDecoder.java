@@ -14,6 +14,10 @@ package io.etherware.pendulum.serial;
  */
 public final class FrameDecoder {
 
+    /** A decoder hunting for its first start byte, with no counts yet. */
+    public FrameDecoder() {
+    }
+
     /** Receives each valid frame. */
     @FunctionalInterface
     public interface Listener {
