@@ -36,13 +36,14 @@ public final class FifoScheduler implements Scheduler {
     private volatile boolean sleeping;
     private volatile Thread dispatcher;
 
-    /** A scheduler whose thread is named {@code etherware-fifo}. */
+    /** A scheduler whose thread is named {@code etherware-fifo@<nodeId>}. */
     public FifoScheduler() {
         this("etherware-fifo");
     }
 
     /**
-     * A scheduler whose dispatcher thread has the given name.
+     * A scheduler whose dispatcher thread has the given name, followed by {@code @<nodeId>} when a
+     * node runs it ({@link JobRunner#nodeId()}).
      *
      * @param threadName the dispatcher thread's name, as thread dumps and logs show it
      */
@@ -62,7 +63,9 @@ public final class FifoScheduler implements Scheduler {
         if (dispatcher != null) {
             throw new IllegalStateException("FifoScheduler.start() works once");
         }
-        Thread thread = Thread.ofPlatform().name(threadName).unstarted(() -> dispatch(runner, clock));
+        String node = runner.nodeId();
+        String name = node == null || node.isEmpty() ? threadName : threadName + "@" + node;
+        Thread thread = Thread.ofPlatform().name(name).unstarted(() -> dispatch(runner, clock));
         dispatcher = thread;
         thread.start();
     }

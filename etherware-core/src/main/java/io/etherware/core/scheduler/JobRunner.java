@@ -21,4 +21,14 @@ public interface JobRunner {
      * @return whether the job ran now ({@code false}: parked, it will come back)
      */
     boolean run(Job job, long nowNs);
+
+    /**
+     * The id of the node whose jobs these are. Schedulers add it to their thread names
+     * ({@code rt-dispatcher-1@plant}) and log lines, so that two nodes in one JVM can be told apart.
+     *
+     * @return the node id; empty (the default) for a runner that belongs to no node
+     */
+    default String nodeId() {
+        return "";
+    }
 }

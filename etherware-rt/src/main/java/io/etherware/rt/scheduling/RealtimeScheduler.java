@@ -67,6 +67,8 @@ public final class RealtimeScheduler implements Scheduler {
     private final AtomicBoolean badPlacementLogged = new AtomicBoolean();
     private final Object lifecycle = new Object();
     private volatile DispatchContext context;
+    /** {@link #name()}, then {@code @nodeId} once started by a node: what logs and thread names say. */
+    private volatile String label;
     private volatile Dispatcher[] dispatchers;
     private volatile PlatformReport platformReport = new PlatformReport(List.of(), false, Optional.empty());
     private boolean shutDown;
@@ -110,6 +112,12 @@ public final class RealtimeScheduler implements Scheduler {
         return config.name();
     }
 
+    /** The name with the node id once a node started it ({@code rt@plant}), as logs show it. */
+    private String label() {
+        String current = label;
+        return current != null ? current : name();
+    }
+
     /**
      * The configuration this scheduler was built with.
      *
@@ -142,6 +150,9 @@ public final class RealtimeScheduler implements Scheduler {
                     : Optional.empty();
             DispatchContext newContext = null;
             Dispatcher[] all = null;
+            String node = runner.nodeId();
+            String suffix = node == null || node.isEmpty() ? "" : "@" + node;
+            label = name() + suffix;
             try {
                 var processLines = new ArrayList<String>();
                 var processRefusals = new ArrayList<PlatformRefusal>();
@@ -164,7 +175,7 @@ public final class RealtimeScheduler implements Scheduler {
                 all = new Dispatcher[tsr.size()];
                 for (int id = 0; id < all.length; id++) {
                     all[id] = new Dispatcher(id, tsr.dispatcher(id), newContext, recorders.get(id),
-                            name() + "-dispatcher-" + id);
+                            name() + "-dispatcher-" + id + suffix);
                 }
                 newContext.setDispatchers(all);
                 for (Dispatcher dispatcher : all) {
@@ -180,9 +191,9 @@ public final class RealtimeScheduler implements Scheduler {
                         processRefusals);
                 dispatchers = all;
                 context = newContext;
-                LOG.info("scheduler {}: placement {}, {} dispatchers {}", name(), config.placementRule(), all.length,
+                LOG.info("scheduler {}: placement {}, {} dispatchers {}", label(), config.placementRule(), all.length,
                         tsr);
-                platformReport.lines().forEach(line -> LOG.info("scheduler {}: {}", name(), line));
+                platformReport.lines().forEach(line -> LOG.info("scheduler {}: {}", label(), line));
             } catch (RuntimeException | Error e) {
                 abortStarted(newContext, all); // a start that fails leaves no dispatcher running
                 releaseProcessRequests(); // and holds nothing
@@ -266,7 +277,7 @@ public final class RealtimeScheduler implements Scheduler {
 
     private void logBadPlacement(Job job, String what) {
         if (badPlacementLogged.compareAndSet(false, true)) {
-            LOG.error("scheduler {}: {} {}; running it (and any later such job) on dispatcher 0", name(), job, what);
+            LOG.error("scheduler {}: {} {}; running it (and any later such job) on dispatcher 0", label(), job, what);
         }
     }
 
@@ -351,11 +362,11 @@ public final class RealtimeScheduler implements Scheduler {
         } while (started.unaccounted(leftovers.size() + stranded[0]) > 0 && System.nanoTime() < settleUntilNs
                 && sleepBriefly());
         if (stranded[0] > 0) {
-            LOG.warn("scheduler {}: {} queued jobs stay with dispatchers still inside a job after shutdown", name(),
+            LOG.warn("scheduler {}: {} queued jobs stay with dispatchers still inside a job after shutdown", label(),
                     stranded[0]);
         }
         releaseProcessRequests();
-        LOG.info("scheduler {} stopped; {} queued jobs not run", name(), leftovers.size());
+        LOG.info("scheduler {} stopped; {} queued jobs not run", label(), leftovers.size());
         return leftovers;
     }
 
@@ -391,7 +402,7 @@ public final class RealtimeScheduler implements Scheduler {
             if (!thread.join(java.time.Duration.ofNanos(timeoutNs))) {
                 thread.interrupt();
                 if (!thread.join(java.time.Duration.ofNanos(MIN_JOIN_NS))) {
-                    LOG.warn("scheduler {}: dispatcher {} is still inside a job after shutdown; leaving it", name(),
+                    LOG.warn("scheduler {}: dispatcher {} is still inside a job after shutdown; leaving it", label(),
                             dispatcher.id());
                 }
             }

@@ -10,7 +10,8 @@ import java.util.regex.Pattern;
  *
  * <p>Defaults, in one place:
  * <ul>
- *   <li>{@code name} = {@code rt}: thread names are {@code rt-dispatcher-<id>};</li>
+ *   <li>{@code name} = {@code rt}: thread names are {@code rt-dispatcher-<id>@<nodeId>}
+ *       (without {@code @<nodeId>} when no node runs the scheduler);</li>
  *   <li>{@code threadSchedulingRule} = {@link ThreadSchedulingRule#tableII()}: dispatcher 0
  *       SCHED_OTHER, 1..3 SCHED_FIFO 80/70/60. Without the privilege for SCHED_FIFO the scheduler
  *       warns once with the fix and runs at ordinary priorities;</li>

@@ -214,7 +214,7 @@ public final class Notifier implements AutoCloseable {
             }
             running = true;
             // Daemon: the application decides when the JVM ends, as for the dispatchers.
-            starting = Thread.ofPlatform().name(config.threadName()).daemon(true).unstarted(this::run);
+            starting = Thread.ofPlatform().name(config.threadName() + "@" + kernel.nodeId()).daemon(true).unstarted(this::run);
             thread = starting;
             starting.start();
         }

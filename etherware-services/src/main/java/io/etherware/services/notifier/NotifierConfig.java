@@ -29,7 +29,8 @@ import java.util.Objects;
  *                     clock instead, in 0..{@value #MAX_SPIN_NS} (0: no spin). A spin trades CPU
  *                     for wake-up accuracy; it is bounded per release, so at real-time priority it
  *                     takes at most {@code spinNs} per release from everything else on its CPU
- * @param threadName   the Notifier thread's name
+ * @param threadName   the Notifier thread's name, to which the Notifier adds {@code @<nodeId>}
+ *                     (thread dumps then tell the Notifiers of two nodes in one JVM apart)
  * @param kernelSleep  whether the thread sleeps the last stretch before each release in the kernel
  *                     to the absolute release time ({@code clock_nanosleep(CLOCK_MONOTONIC,
  *                     TIMER_ABSTIME)}, {@link io.etherware.rt.platform.AbsoluteSleeper}) where that

@@ -267,7 +267,7 @@ class UpgradeTest {
                     Management.upgrade(context, "upgrade-requester", COUNTER,
                                     Implementation.ofClass(SequenceCounterV2.class).withConfiguration("requester"))
                             .whenComplete((result, error) -> {
-                                answeredOnDispatcher.set(Thread.currentThread().getName().equals("etherware-fifo"));
+                                answeredOnDispatcher.set(Thread.currentThread().getName().startsWith("etherware-fifo@"));
                                 if (error != null) {
                                     answered.completeExceptionally(error);
                                 } else {

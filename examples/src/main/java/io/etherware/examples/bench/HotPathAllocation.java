@@ -110,7 +110,7 @@ final class HotPathAllocation {
             notifier.subscribe(Subscription.periodic("alloc", SINK, Criticality.HIGH, BenchConfig.PERIOD_NS));
             TimeUnit.NANOSECONDS.sleep(Math.max(config.warmupNs(), TimeUnit.MILLISECONDS.toNanos(500)));
             Thread notifierThread = Thread.getAllStackTraces().keySet().stream()
-                    .filter(t -> t.getName().equals("bench-alloc-notifier")).findFirst().orElseThrow();
+                    .filter(t -> t.getName().startsWith("bench-alloc-notifier@")).findFirst().orElseThrow();
             long receivedBefore = received.get();
             long notifierBefore = Throughput.Allocation.threadBytes(notifierThread);
             long receiverBefore = Throughput.Allocation.threadBytes(receiver.get());

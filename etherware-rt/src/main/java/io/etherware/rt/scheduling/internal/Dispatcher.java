@@ -106,7 +106,7 @@ public final class Dispatcher implements Runnable {
             // The scheduler warns for all dispatchers at once, once it has every grant.
             grant = Platform.current().configureCurrentThreadWithoutWarning(spec.policy(), spec.cpus());
         } catch (RuntimeException e) {
-            LOG.error("dispatcher {} could not configure its thread; it runs at the inherited priority", id, e);
+            LOG.error("dispatcher {} could not configure its thread; it runs at the inherited priority", thread.getName(), e);
             grant = new ThreadGrant(thread.getName(), -1, spec.policy(), ThreadPolicy.NON_REALTIME, spec.cpus(),
                     CpuSet.inherit(), List.of(new PlatformRefusal("thread priority", spec.policy().toString(),
                             Errno.ENOSYS, Errno.name(Errno.ENOSYS), e.toString())));
@@ -236,7 +236,7 @@ public final class Dispatcher implements Runnable {
         if (!failureLogged) {
             failureLogged = true;
             LOG.error("dispatcher {}: {} threw for {}; the dispatcher runs on (further failures are only counted)",
-                    id, what, job, failure);
+                    thread.getName(), what, job, failure);
         }
     }
 
