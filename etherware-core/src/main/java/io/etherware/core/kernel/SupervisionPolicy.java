@@ -87,11 +87,6 @@ public record SupervisionPolicy(Restart restart, int maxRestarts, long windowNs)
     }
 
     static long toNs(String field, Duration duration) {
-        Objects.requireNonNull(duration, field);
-        try {
-            return duration.toNanos();
-        } catch (ArithmeticException e) {
-            throw new IllegalArgumentException(field + "=" + duration + " is too long", e);
-        }
+        return io.etherware.core.time.Durations.toNs(field, duration);
     }
 }

@@ -1,9 +1,11 @@
 package io.etherware.services.notifier;
 
 import io.etherware.core.message.Profile;
+import io.etherware.core.time.Durations;
 import io.etherware.rt.platform.CpuSet;
 import io.etherware.rt.platform.ThreadPolicy;
 import io.etherware.rt.scheduling.ThreadSchedulingRule;
+import java.time.Duration;
 import java.util.Objects;
 
 /**
@@ -136,14 +138,14 @@ public record NotifierConfig(Profile profile, ThreadPolicy threadPolicy, CpuSet 
     }
 
     /**
-     * This configuration spinning for the last {@code newSpinNs} before each release.
+     * This configuration spinning for the last {@code spin} before each release.
      *
-     * @param newSpinNs the spin in nanoseconds, 0..{@value #MAX_SPIN_NS} (0, the default: no spin)
+     * @param spin the spin, 0..{@value #MAX_SPIN_NS} ns (zero, the default: no spin)
      * @return a copy with that spin
-     * @throws IllegalArgumentException if {@code newSpinNs} is out of range
+     * @throws IllegalArgumentException if {@code spin} is out of range
      */
-    public NotifierConfig withSpinNs(long newSpinNs) {
-        return new NotifierConfig(profile, threadPolicy, cpus, newSpinNs, threadName, kernelSleep);
+    public NotifierConfig withSpin(Duration spin) {
+        return new NotifierConfig(profile, threadPolicy, cpus, Durations.toNs("spin", spin), threadName, kernelSleep);
     }
 
     /**

@@ -38,7 +38,7 @@ class NotifierConfigTest {
 
     @Test
     void shouldRefuseAnUnboundedSpinOrAnOutOfRangePriorityNamingTheField() {
-        var spin = assertThrows(IllegalArgumentException.class, () -> NotifierConfig.defaults().withSpinNs(200_000));
+        var spin = assertThrows(IllegalArgumentException.class, () -> NotifierConfig.defaults().withSpin(java.time.Duration.ofNanos(200_000)));
         assertTrue(spin.getMessage().startsWith("spinNs=200000 must be in 0..100000"), spin.getMessage());
         var priority = assertThrows(IllegalArgumentException.class,
                 () -> NotifierConfig.defaults().withThreadPolicy(ThreadPolicy.fifo(100)));

@@ -3,6 +3,7 @@ package io.etherware.examples.scenario;
 import io.etherware.pendulum.dsp.DspBoardConfig;
 import io.etherware.pendulum.serial.DspClient;
 import io.etherware.pendulum.serial.SimulatedSerialLink;
+import java.time.Duration;
 
 /**
  * How the scenarios wire the simulated plant at a serial line rate: the link at {@code baudRate}, and
@@ -48,13 +49,14 @@ public record PlantWiring(int baudRate) {
     /** The board with its cycle scaled from 0.5 ms at 115,200 baud (at least 50 µs, at most the default). */
     public DspBoardConfig board() {
         DspBoardConfig defaults = DspBoardConfig.defaults();
-        return defaults.withStepNs(Math.clamp(scaled(defaults.stepNs()), MIN_BOARD_STEP_NS, defaults.stepNs()));
+        return defaults.withStep(Duration.ofNanos(
+                Math.clamp(scaled(defaults.stepNs()), MIN_BOARD_STEP_NS, defaults.stepNs())));
     }
 
     /** The proxy's client with its reply timeout scaled from 4 ms at 115,200 baud (at least 0.5 ms). */
     public DspClient.Config client() {
         DspClient.Config defaults = DspClient.Config.defaults();
-        return defaults.withTimeout(Math.max(MIN_REPLY_TIMEOUT_NS, scaled(defaults.responseTimeoutNs())),
+        return defaults.withTimeout(Duration.ofNanos(Math.max(MIN_REPLY_TIMEOUT_NS, scaled(defaults.responseTimeoutNs()))),
                 defaults.attempts());
     }
 

@@ -1,8 +1,10 @@
 package io.etherware.pendulum.components;
 
 import io.etherware.core.message.Profile;
+import io.etherware.core.time.Durations;
 import io.etherware.pendulum.control.VelocityEstimator;
 import io.etherware.pendulum.dsp.DspBoardConfig;
+import java.time.Duration;
 import java.util.Objects;
 
 /**
@@ -83,13 +85,13 @@ public record ControllerConfig(
     /**
      * A copy with another reply timeout.
      *
-     * @param nanos how long a cycle waits for its reading, in nanoseconds, greater than 0 and below
-     *     the Tick period
+     * @param replyTimeout how long a cycle waits for its reading, greater than 0 and below the Tick
+     *     period
      * @return the copy
-     * @throws IllegalArgumentException when {@code nanos} is not positive
+     * @throws IllegalArgumentException when {@code replyTimeout} is not positive
      */
-    public ControllerConfig withReplyTimeoutNs(long nanos) {
-        return new ControllerConfig(dspProxy, nanos, theta1ReferenceRad, maxTorqueNm, filterTimeConstantNs);
+    public ControllerConfig withReplyTimeout(Duration replyTimeout) {
+        return new ControllerConfig(dspProxy, Durations.toNs("replyTimeout", replyTimeout), theta1ReferenceRad, maxTorqueNm, filterTimeConstantNs);
     }
 
     /**

@@ -1,6 +1,8 @@
 package io.etherware.pendulum.dsp;
 
+import io.etherware.core.time.Durations;
 import io.etherware.pendulum.plant.PendulumPlant;
+import java.time.Duration;
 
 /**
  * Settings of the simulated DSP board. Immutable and thread-safe; validated at construction,
@@ -77,24 +79,25 @@ public record DspBoardConfig(
     /**
      * A copy with another step.
      *
-     * @param nanos the board's cycle and plant step, in nanoseconds, within [10 µs, 10 ms] and
-     *     no longer than the watchdog timeout
+     * @param step the board's cycle and plant step, within [10 µs, 10 ms] and no longer than the
+     *     watchdog timeout
      * @return the copy
-     * @throws IllegalArgumentException when {@code nanos} is out of range
+     * @throws IllegalArgumentException when {@code step} is out of range
      */
-    public DspBoardConfig withStepNs(long nanos) {
-        return new DspBoardConfig(nanos, countsPerRevolution, maxTorqueNm, watchdogTimeoutNs, maxSpinNs);
+    public DspBoardConfig withStep(Duration step) {
+        return new DspBoardConfig(Durations.toNs("step", step), countsPerRevolution, maxTorqueNm, watchdogTimeoutNs, maxSpinNs);
     }
 
     /**
      * A copy with another watchdog timeout.
      *
-     * @param nanos the timeout, in nanoseconds, at least one step
+     * @param watchdogTimeout the timeout, at least one step
      * @return the copy
-     * @throws IllegalArgumentException when {@code nanos} is shorter than a step
+     * @throws IllegalArgumentException when {@code watchdogTimeout} is shorter than a step
      */
-    public DspBoardConfig withWatchdogTimeoutNs(long nanos) {
-        return new DspBoardConfig(stepNs, countsPerRevolution, maxTorqueNm, nanos, maxSpinNs);
+    public DspBoardConfig withWatchdogTimeout(Duration watchdogTimeout) {
+        return new DspBoardConfig(stepNs, countsPerRevolution, maxTorqueNm, Durations.toNs("watchdogTimeout", watchdogTimeout),
+                maxSpinNs);
     }
 
     /**
@@ -111,12 +114,13 @@ public record DspBoardConfig(
     /**
      * A copy with another spin bound.
      *
-     * @param nanos the longest busy-wait before a step in real-time mode, in nanoseconds, within
-     *     [0, {@value #MAX_SPIN_LIMIT_NS}]; 0 to only sleep
+     * @param maxSpin the longest busy-wait before a step in real-time mode, within
+     *     [0, {@value #MAX_SPIN_LIMIT_NS}] ns; zero to only sleep
      * @return the copy
-     * @throws IllegalArgumentException when {@code nanos} is out of range
+     * @throws IllegalArgumentException when {@code maxSpin} is out of range
      */
-    public DspBoardConfig withMaxSpinNs(long nanos) {
-        return new DspBoardConfig(stepNs, countsPerRevolution, maxTorqueNm, watchdogTimeoutNs, nanos);
+    public DspBoardConfig withMaxSpin(Duration maxSpin) {
+        return new DspBoardConfig(stepNs, countsPerRevolution, maxTorqueNm, watchdogTimeoutNs,
+                Durations.toNs("maxSpin", maxSpin));
     }
 }

@@ -1,7 +1,9 @@
 package io.etherware.pendulum.serial;
 
+import io.etherware.core.time.Durations;
 import io.etherware.core.time.NodeClock;
 import java.io.IOException;
+import java.time.Duration;
 import java.util.Objects;
 
 /**
@@ -86,13 +88,13 @@ public final class DspClient {
         /**
          * A copy with another response timeout and number of attempts.
          *
-         * @param timeoutNs    how long to wait for each reply, in nanoseconds, greater than 0
+         * @param timeout      how long to wait for each reply, greater than 0
          * @param attemptCount how many times a request is sent before the call fails, in [1, 10]
          * @return the copy
          * @throws IllegalArgumentException when a value is out of range
          */
-        public Config withTimeout(long timeoutNs, int attemptCount) {
-            return new Config(countsPerRevolution, timeoutNs, attemptCount);
+        public Config withTimeout(Duration timeout, int attemptCount) {
+            return new Config(countsPerRevolution, Durations.toNs("timeout", timeout), attemptCount);
         }
     }
 

@@ -30,7 +30,7 @@ final class LockStepLoop implements AutoCloseable {
     static final long PERIOD_NS = 15_000_000L;
     static final long SECOND_NS = 1_000_000_000L;
     static final long WALL_CLOCK_REPLY_TIMEOUT_NS = TimeUnit.SECONDS.toNanos(30);
-    static final ControllerConfig CONFIG = ControllerConfig.defaults().withReplyTimeoutNs(WALL_CLOCK_REPLY_TIMEOUT_NS);
+    static final ControllerConfig CONFIG = ControllerConfig.defaults().withReplyTimeout(java.time.Duration.ofNanos(WALL_CLOCK_REPLY_TIMEOUT_NS));
 
     final LockStepClock clock = new LockStepClock();
     final LockStepScheduler scheduler = new LockStepScheduler();

@@ -37,7 +37,7 @@ class ClosedLoopLockStepTest {
     /** 15 ms over the paper's 115200 baud; 1 ms needs a faster line (a cycle is ~45 bytes) and board. */
     static LockStepRig rig(long periodNs, SimulatedSerialLink.Config link) {
         boolean fast = periodNs < 5_000_000L;
-        DspBoardConfig board = fast ? DspBoardConfig.defaults().withStepNs(100_000L) : DspBoardConfig.defaults();
+        DspBoardConfig board = fast ? DspBoardConfig.defaults().withStep(java.time.Duration.ofNanos(100_000L)) : DspBoardConfig.defaults();
         return new LockStepRig(fast ? link.withBaudRate(921_600) : link, board, TILTED);
     }
 

@@ -121,7 +121,7 @@ class DspBoardTest {
     @Test
     void shouldRejectAnInvalidConfigurationNamingTheField() {
         var error = assertThrows(IllegalArgumentException.class,
-                () -> DspBoardConfig.defaults().withWatchdogTimeoutNs(1_000L));
+                () -> DspBoardConfig.defaults().withWatchdogTimeout(java.time.Duration.ofNanos(1_000L)));
         assertTrue(error.getMessage().startsWith("watchdogTimeoutNs=1000"), error.getMessage());
     }
 }

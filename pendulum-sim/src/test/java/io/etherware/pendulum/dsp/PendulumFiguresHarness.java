@@ -60,7 +60,7 @@ public final class PendulumFiguresHarness {
                 boolean fast = periodNs < 5_000_000L;
                 LockStepRig rig = new LockStepRig(fast ? SimulatedSerialLink.Config.defaults().withBaudRate(921_600)
                         : SimulatedSerialLink.Config.defaults(),
-                        fast ? DspBoardConfig.defaults().withStepNs(100_000L) : DspBoardConfig.defaults(),
+                        fast ? DspBoardConfig.defaults().withStep(java.time.Duration.ofNanos(100_000L)) : DspBoardConfig.defaults(),
                         new PendulumState(0.0, 0.0, 0.05, 0.0));
                 rig.control(new BalanceControl(gains, 0.0, DspBoardConfig.DEFAULT_MAX_TORQUE_NM,
                         VelocityEstimator.DEFAULT_FILTER_TIME_CONSTANT_NS), periodNs, 6_000_000_000L);

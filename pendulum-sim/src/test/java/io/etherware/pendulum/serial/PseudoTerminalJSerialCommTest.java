@@ -54,7 +54,7 @@ class PseudoTerminalJSerialCommTest {
             board.startRealTime(NodeClock.system(), RealTimePriority.fifoThreads("dsp-board", 20));
             // Generous timeout: on a loaded box a thread may wake late.
             DspClient client = new DspClient(port, NodeClock.system(),
-                    DspClient.Config.defaults().withTimeout(12_000_000L, 1));
+                    DspClient.Config.defaults().withTimeout(java.time.Duration.ofMillis(12), 1));
             BalanceControl control = new BalanceControl(GainSet.v2Tight(parameters), 0.0,
                     DspBoardConfig.DEFAULT_MAX_TORQUE_NM,
                     VelocityEstimator.DEFAULT_FILTER_TIME_CONSTANT_NS);

@@ -27,7 +27,7 @@ class RealTimeSimulatedLinkTest {
                 new PendulumState(0.0, 0.0, 0.05, 0.0), link.boardEnd())) {
             board.startRealTime(NodeClock.system(), RealTimePriority.fifoThreads("dsp-board", 20));
             DspClient client = new DspClient(link.hostEnd(), NodeClock.system(),
-                    DspClient.Config.defaults().withTimeout(12_000_000L, 1));
+                    DspClient.Config.defaults().withTimeout(java.time.Duration.ofMillis(12), 1));
             BalanceControl control = new BalanceControl(GainSet.v1Soft(parameters), 0.0,
                     DspBoardConfig.DEFAULT_MAX_TORQUE_NM,
                     VelocityEstimator.DEFAULT_FILTER_TIME_CONSTANT_NS);
