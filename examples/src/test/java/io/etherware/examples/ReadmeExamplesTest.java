@@ -12,9 +12,11 @@ import java.util.stream.Stream;
 import org.junit.jupiter.api.Test;
 
 /**
- * The README's Java examples are the tests that run them: every {@code java} block of the README
- * appears, line for line and in order, in a test between its {@code // README example begins} and
- * {@code ends} markers (the test may add only assertions), so neither can change without the other.
+ * The README's Java examples are the code that runs them: every {@code java} block of the README
+ * appears, line for line and in order, between a {@code // README example begins} and {@code ends}
+ * marker in a test, or in the complete program ({@code examples/.../quickstart/QuickStart.java},
+ * run by {@code QuickStartTest}); a marked region may add only assertions, so neither can change
+ * without the other.
  */
 class ReadmeExamplesTest {
 
@@ -31,10 +33,10 @@ class ReadmeExamplesTest {
         List<List<String>> unmatched = new ArrayList<>(blocks);
         for (Path test : tests) {
             List<String> file = significant(Files.readAllLines(test));
-            List<String> marked = file.subList(file.indexOf(BEGINS) + 1, file.indexOf(ENDS)).stream()
-                    .filter(line -> !line.startsWith("assert")).toList();
-            boolean found = unmatched.removeIf(block -> isSubsequence(block, file) && isSubsequence(marked, block));
-            assertTrue(found, test + ": its README example (" + marked.getFirst() + " ...) is not in the README as it is");
+            for (List<String> marked : markedRegions(file)) {
+                boolean found = unmatched.removeIf(block -> isSubsequence(block, file) && isSubsequence(marked, block));
+                assertTrue(found, test + ": its README example (" + marked.getFirst() + " ...) is not in the README as it is");
+            }
         }
         assertEquals(List.of(), unmatched, "README java blocks that no test runs");
     }
@@ -55,10 +57,26 @@ class ReadmeExamplesTest {
         return blocks;
     }
 
+    /** Each region between a begins and an ends marker, without its assertions. */
+    private static List<List<String>> markedRegions(List<String> file) {
+        List<List<String>> regions = new ArrayList<>();
+        int from = file.indexOf(BEGINS);
+        while (from >= 0) {
+            int to = file.subList(from, file.size()).indexOf(ENDS) + from;
+            assertTrue(to > from, "a README example begins without an end");
+            regions.add(file.subList(from + 1, to).stream().filter(line -> !line.startsWith("assert")).toList());
+            int next = file.subList(to, file.size()).indexOf(BEGINS);
+            from = next < 0 ? -1 : next + to;
+        }
+        return regions;
+    }
+
     private static List<Path> markedTests() throws IOException {
         List<Path> tests = new ArrayList<>();
-        for (String module : List.of("etherware-core", "etherware-rt", "etherware-services", "pendulum-sim", "examples")) {
-            Path sources = ROOT.resolve(module).resolve("src/test/java");
+        for (String module : List.of("etherware-core/src/test/java", "etherware-rt/src/test/java",
+                "etherware-services/src/test/java", "pendulum-sim/src/test/java", "examples/src/test/java",
+                "examples/src/main/java/io/etherware/examples/quickstart")) {
+            Path sources = ROOT.resolve(module);
             if (!Files.isDirectory(sources)) {
                 continue;
             }
