@@ -31,6 +31,7 @@ import java.util.ArrayList;
 import java.util.Comparator;
 import java.util.List;
 import java.util.Objects;
+import java.util.Set;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.CopyOnWriteArrayList;
@@ -64,6 +65,7 @@ public final class KernelCore implements Kernel, JobRunner {
      * jobs of the same urgency not penned. Far above any sequence a node reaches.
      */
     static final long PEN_OFFSET = 1L << 62;
+    private static final int MAX_ROUTE_REFUSALS_LOGGED = 64;
 
     private enum NodeState { CREATED, RUNNING, CLOSING, CLOSED }
 
@@ -84,6 +86,8 @@ public final class KernelCore implements Kernel, JobRunner {
     /** Every component ever added, for the counters. */
     private final List<LocalShell> everAdded = new CopyOnWriteArrayList<>();
     private final LongAdder undeliverable = new LongAdder();
+    /** Destinations whose route refused a message, logged once each (at most {@link #MAX_ROUTE_REFUSALS_LOGGED}). */
+    private final Set<Profile> routeRefusalsLogged = ConcurrentHashMap.newKeySet();
     private final LongAdder discarded = new LongAdder();
     private final LongAdder escalations = new LongAdder();
     private final LongAdder resets = new LongAdder();
@@ -239,7 +243,15 @@ public final class KernelCore implements Kernel, JobRunner {
         try {
             route.deliver(message);
         } catch (RuntimeException e) {
-            undeliverable(message, "the route to '" + message.profile() + "' refused it: " + e);
+            String reason = "the route to '" + message.profile() + "' refused it: " + e;
+            // A refusal is usually a mistake in the application (a contents type not registered on
+            // this node, a record the codec cannot read): say so once per destination where it shows,
+            // not only to the sender.
+            if (routeRefusalsLogged.size() < MAX_ROUTE_REFUSALS_LOGGED && routeRefusalsLogged.add(message.profile())) {
+                log.warn("node {}: {} (logged once per destination; later ones go to the sender only)", nodeId,
+                        reason);
+            }
+            undeliverable(message, reason);
         }
     }
 
