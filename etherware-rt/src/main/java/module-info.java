@@ -6,14 +6,14 @@
  * <p>Run with {@code --enable-native-access=io.etherware.rt} (or {@code ALL-UNNAMED} on the class
  * path) so the OS calls work without the JVM's restricted-method warning.
  */
-// HdrHistogram 2.2.2 declares no module name (no module-info, no Automatic-Module-Name): its name
-// is derived from the jar, and it is transitive because DispatcherStats hands out its Histogram.
-@SuppressWarnings("requires-transitive-automatic")
 module io.etherware.rt {
     requires transitive io.etherware.core;
-    requires transitive HdrHistogram;
+    // HdrHistogram 2.2.2 declares no module name (no module-info, no Automatic-Module-Name): its name
+    // is derived from the jar. Not transitive: the API hands out LatencySnapshot, never its types.
+    requires HdrHistogram;
     requires jdk.jfr;
 
     exports io.etherware.rt.platform;
     exports io.etherware.rt.scheduling;
+    exports io.etherware.rt.stats;
 }

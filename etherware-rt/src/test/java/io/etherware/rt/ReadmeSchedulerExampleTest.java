@@ -29,7 +29,7 @@ class ReadmeSchedulerExampleTest {
             node.start(); // logs one line per dispatcher: OS priority requested vs granted
             node.send(controller, new Text("sample"), control);
         }
-        long p99Ns = scheduler.stats().dispatcher(1).startLatencyNs().getValueAtPercentile(99); // release to start
+        long p99Ns = scheduler.stats().dispatcher(1).startLatencyNs().percentileNs(99); // release to start
         // README example ends
 
         assertEquals(1, scheduler.stats().dispatcher(1).jobsRun(), "the HIGH message ran on dispatcher 1");

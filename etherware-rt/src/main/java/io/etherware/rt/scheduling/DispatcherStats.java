@@ -1,13 +1,12 @@
 package io.etherware.rt.scheduling;
 
-import org.HdrHistogram.Histogram;
+import io.etherware.rt.stats.LatencySnapshot;
 
 /**
- * A snapshot of one dispatcher's time accounting since the scheduler started.
- * Immutable apart from the histograms, which are the caller's copies.
+ * A snapshot of one dispatcher's time accounting since the scheduler started. Immutable.
  *
- * <p>The histograms are copies owned by the caller, in nanoseconds, with 2 significant digits
- * (values within 1 %), up to 60 s (longer values are recorded as 60 s).
+ * <p>The latency distributions are in nanoseconds, with 2 significant digits (values within 1 %),
+ * up to 60 s (longer values are recorded as 60 s).
  *
  * @param dispatcherId     the dispatcher
  * @param jobsRun          jobs its thread ran to completion (parked jobs not included)
@@ -22,5 +21,6 @@ import org.HdrHistogram.Histogram;
  * @param executionNs      start to completion, per job run
  */
 public record DispatcherStats(int dispatcherId, long jobsRun, long jobsParked, long deadlineMisses, long failures,
-                              long priorityBoosts, long queuedJobs, Histogram startLatencyNs, Histogram executionNs) {
+                              long priorityBoosts, long queuedJobs, LatencySnapshot startLatencyNs,
+                              LatencySnapshot executionNs) {
 }

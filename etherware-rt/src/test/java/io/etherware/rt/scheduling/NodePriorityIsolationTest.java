@@ -151,8 +151,8 @@ class NodePriorityIsolationTest {
         // Every job within a tenth of the LOW job (the baseline waits all of it), and nearly every
         // one within a period: a stock JVM's safepoints and the VM's own ordinary-priority threads
         // can hold a real-time thread for a period now and then on a loaded 2-core machine.
-        long p95Ns = high.startLatencyNs().getValueAtPercentile(95);
-        long maxNs = high.startLatencyNs().getMaxValue();
+        long p95Ns = high.startLatencyNs().percentileNs(95);
+        long maxNs = high.startLatencyNs().maxNs();
         assertTrue(p95Ns < PERIOD_NS && maxNs < LOW_JOB_NS / 10, outcome.summary() + "; the scheduler's release-to-start"
                 + " p95 " + p95Ns / 1000 + " us, max " + maxNs / 1000 + " us");
         long withinPeriod = outcome.high().stream().filter(sample -> sample.latencyNs() < PERIOD_NS).count();

@@ -1,12 +1,11 @@
 package io.etherware.services.notifier;
 
+import io.etherware.rt.stats.LatencySnapshot;
 import java.util.Objects;
-import org.HdrHistogram.Histogram;
 
 /**
  * One subscription's accounting since it was added, read at one moment (each counter is exact;
- * they are not read atomically together). Immutable apart from the histogram, which is the
- * caller's own copy.
+ * they are not read atomically together). Immutable.
  *
  * @param subscription     the subscription, with its current target and its actual first release
  * @param ticksSent        Ticks handed to the kernel
@@ -22,10 +21,10 @@ import org.HdrHistogram.Histogram;
  *                         10 s recorded as 10 s
  */
 public record SubscriptionStats(Subscription subscription, long ticksSent, long skippedLate, long skippedBusy,
-                                long skippedUndeliverable, long nextSequence, Histogram latenessNs) {
+                                long skippedUndeliverable, long nextSequence, LatencySnapshot latenessNs) {
 
     /**
-     * Checks that the subscription and the histogram are given.
+     * Checks that the subscription and the lateness snapshot are given.
      *
      * @throws NullPointerException if {@code subscription} or {@code latenessNs} is null
      */

@@ -69,7 +69,7 @@ class NotifierNodeTest {
                 previousSequence = tick.sequence();
             }
             SubscriptionStats stats = notifier.unsubscribe(CONTROLLER.toString()).orElseThrow();
-            assertEquals(stats.ticksSent(), stats.latenessNs().getTotalCount());
+            assertEquals(stats.ticksSent(), stats.latenessNs().count());
             assertAccountsForEveryRelease(stats);
         }
     }

@@ -1,5 +1,6 @@
 package io.etherware.examples.bench;
 
+import io.etherware.rt.stats.LatencySnapshot;
 import org.HdrHistogram.Histogram;
 
 /**
@@ -40,6 +41,18 @@ public record Percentiles(long count, long p50Ns, long p99Ns, long p999Ns, long 
         long p99Ns = Math.min(p999Ns, histogram.getValueAtPercentile(99));
         long p50Ns = Math.min(p99Ns, histogram.getValueAtPercentile(50));
         return new Percentiles(histogram.getTotalCount(), p50Ns, p99Ns, p999Ns, maxNs);
+    }
+
+    /** The percentiles of a snapshot from Etherware's statistics (a scheduler's, the Notifier's). */
+    public static Percentiles of(LatencySnapshot snapshotNs) {
+        if (snapshotNs.count() == 0) {
+            return NONE;
+        }
+        long maxNs = snapshotNs.maxNs();
+        long p999Ns = Math.min(maxNs, snapshotNs.percentileNs(99.9));
+        long p99Ns = Math.min(p999Ns, snapshotNs.percentileNs(99));
+        long p50Ns = Math.min(p99Ns, snapshotNs.percentileNs(50));
+        return new Percentiles(snapshotNs.count(), p50Ns, p99Ns, p999Ns, maxNs);
     }
 
     /** The percentiles of samples in nanoseconds (any order). */

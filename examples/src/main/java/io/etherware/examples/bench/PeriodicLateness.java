@@ -8,6 +8,7 @@ import io.etherware.rt.platform.AbsoluteSleeper;
 import io.etherware.rt.platform.CpuSet;
 import io.etherware.rt.platform.Platform;
 import io.etherware.rt.platform.ThreadPolicy;
+import io.etherware.rt.stats.LatencySnapshot;
 import io.etherware.services.notifier.Notifier;
 import io.etherware.services.notifier.NotifierConfig;
 import io.etherware.services.notifier.Subscription;
@@ -109,10 +110,8 @@ final class PeriodicLateness {
             notifier.subscribe(Subscription.periodic("measured", RECEIVER, Criticality.HIGH, BenchConfig.PERIOD_NS));
             TimeUnit.NANOSECONDS.sleep(config.periodicNs());
             SubscriptionStats stats = notifier.unsubscribe("measured").orElseThrow();
-            Histogram allReleasesNs = stats.latenessNs().copy();
-            if (stats.skippedLate() > 0) {
-                allReleasesNs.recordValueWithCount(stats.subscription().maxLatenessNs(), stats.skippedLate());
-            }
+            LatencySnapshot allReleasesNs = stats.latenessNs().withSamples(stats.subscription().maxLatenessNs(),
+                    stats.skippedLate());
             String grant = notifier.threadGrant().map(g -> g.granted().toString()).orElse("no thread");
             String sleep = kernelSleep && AbsoluteSleeper.isAvailable() ? "clock_nanosleep" : "parkNanos";
             return BenchRow.latency("periodic.notifier" + (kernelSleep ? "" : "-park") + "." + condition.id(), SECTION,

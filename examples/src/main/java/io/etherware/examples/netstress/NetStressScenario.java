@@ -294,7 +294,7 @@ public final class NetStressScenario {
                 + " undeliverable, sending lateness p99 %.3f ms; stress Ticks sent %d, activations %d; cycles"
                 + " recorded %d (dropped %d)", run.controlTicks().ticksSent(), run.controlTicks().skippedLate(),
                 run.controlTicks().skippedBusy(), run.controlTicks().skippedUndeliverable(),
-                run.controlTicks().latenessNs().getValueAtPercentile(99.0) / 1e6, run.stressTicks().ticksSent(),
+                run.controlTicks().latenessNs().percentileNs(99.0) / 1e6, run.stressTicks().ticksSent(),
                 node1Activations, cycles.cycles().size(), cycles.dropped()));
         notes.add(String.format(Locale.ROOT, "  node 1: load: %d threads allocated %.1f GiB; GC: %d collections, %d"
                 + " ms; DSP board late cycles %d; network threads %s", run.loadThreads(),

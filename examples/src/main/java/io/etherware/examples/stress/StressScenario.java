@@ -193,7 +193,7 @@ public final class StressScenario {
             notes.add(String.format(Locale.ROOT, "  controller Ticks: sent %d, skipped %d late and %d busy, sending"
                     + " lateness p99 %.3f ms; stress Ticks sent %d, activations %d; cycles recorded %d (dropped %d)",
                     controlTicks.ticksSent(), controlTicks.skippedLate(), controlTicks.skippedBusy(),
-                    controlTicks.latenessNs().getValueAtPercentile(99.0) / 1e6, stressTicks.ticksSent(),
+                    controlTicks.latenessNs().percentileNs(99.0) / 1e6, stressTicks.ticksSent(),
                     marks.stream().filter(e -> e.kind() == ScenarioEvent.Kind.STRESS_START).count(),
                     cycles.cycles().size(), cycles.dropped()));
             notes.add(String.format(Locale.ROOT, "  load: %d threads allocated %.1f GiB; GC: %d collections, %d ms;"
@@ -222,7 +222,7 @@ public final class StressScenario {
             if (dispatcher.jobsRun() > 0) {
                 note.append(String.format(Locale.ROOT, " dispatcher %d: %d jobs, start latency p99 %.2f ms;",
                         dispatcher.dispatcherId(), dispatcher.jobsRun(),
-                        dispatcher.startLatencyNs().getValueAtPercentile(99.0) / 1e6));
+                        dispatcher.startLatencyNs().percentileNs(99.0) / 1e6));
             }
         }
         return note.toString();

@@ -2,11 +2,10 @@ package io.etherware.services.notifier.internal;
 
 import io.etherware.core.message.Profile;
 import io.etherware.core.message.QoS;
+import io.etherware.rt.stats.LatencyRecorder;
 import io.etherware.services.notifier.Subscription;
 import io.etherware.services.notifier.SubscriptionStats;
 import java.util.concurrent.atomic.AtomicLong;
-import org.HdrHistogram.Histogram;
-import org.HdrHistogram.SingleWriterRecorder;
 
 /**
  * One subscription inside the Notifier: its fixed release grid ({@code t0 + k * period}), where
@@ -42,12 +41,7 @@ public final class SubscriptionState {
     private final AtomicLong skippedBusy = new AtomicLong();
     private final AtomicLong skippedUndeliverable = new AtomicLong();
     private final AtomicLong publishedNextSequence = new AtomicLong();
-    private final SingleWriterRecorder lateness = new SingleWriterRecorder(1, HIGHEST_TRACKABLE_NS,
-            SIGNIFICANT_DIGITS);
-
-    // Reader side, guarded by this.
-    private final Histogram latenessTotal = new Histogram(1, HIGHEST_TRACKABLE_NS, SIGNIFICANT_DIGITS);
-    private Histogram latenessInterval;
+    private final LatencyRecorder lateness = new LatencyRecorder(HIGHEST_TRACKABLE_NS, SIGNIFICANT_DIGITS);
 
     /**
      * @param subscription the subscription with its first release resolved (never
@@ -116,10 +110,8 @@ public final class SubscriptionState {
 
     /** Everything recorded since the subscription was added. */
     public synchronized SubscriptionStats stats() {
-        latenessInterval = lateness.getIntervalHistogram(latenessInterval);
-        latenessTotal.add(latenessInterval);
         return new SubscriptionStats(subscription(), ticksSent.get(), skippedLate.get(), skippedBusy.get(),
-                skippedUndeliverable.get(), publishedNextSequence.get(), latenessTotal.copy());
+                skippedUndeliverable.get(), publishedNextSequence.get(), lateness.snapshot());
     }
 
     // ---------------------------------------------------------------- Notifier thread
@@ -177,7 +169,7 @@ public final class SubscriptionState {
     }
 
     void recordSent(long latenessNs) {
-        lateness.recordValue(Math.clamp(latenessNs, 0, HIGHEST_TRACKABLE_NS));
+        lateness.record(latenessNs);
         increment(ticksSent);
     }
 
