@@ -36,7 +36,7 @@ class PlatformRefusalChildJvmTest {
 
         /** The scheduler's INFO log lines at node start, without the logger's prefix. */
         List<String> startLog() {
-            String prefix = "INFO " + RealtimeScheduler.class.getName() + " - scheduler rt: ";
+            String prefix = "INFO " + RealtimeScheduler.class.getName() + " - scheduler rt@probe: ";
             return err.stream().filter(line -> line.contains(prefix))
                     .map(line -> line.substring(line.indexOf(prefix) + prefix.length())).toList();
         }
@@ -52,7 +52,7 @@ class PlatformRefusalChildJvmTest {
                 "--bounding-set=-sys_nice,-ipc_lock", PRLIMIT.toString(), "--rtprio=0", "--memlock=65536"));
 
         assertEquals(0, run.exitCode(), String.join("\n", run.err()));
-        assertEquals(List.of("HIGH on rt-dispatcher-1"), run.prefixed("RAN "),
+        assertEquals(List.of("HIGH on rt-dispatcher-1@probe"), run.prefixed("RAN "),
                 "the node runs on without real-time priority");
         List<String> report = run.prefixed("REPORT ");
         assertEquals(6, report.size(), String.join("\n", report));
@@ -83,7 +83,7 @@ class PlatformRefusalChildJvmTest {
         Run run = runProbe(List.of());
 
         assertEquals(0, run.exitCode(), String.join("\n", run.err()));
-        assertEquals(List.of("HIGH on rt-dispatcher-1"), run.prefixed("RAN "));
+        assertEquals(List.of("HIGH on rt-dispatcher-1@probe"), run.prefixed("RAN "));
         assertLogsTheReportAtStart(run);
         List<String> report = run.prefixed("REPORT ");
         if (OsThreadStat.hasCapSysNice() && OsThreadStat.hasCapability(14 /* CAP_IPC_LOCK */)) {
@@ -107,7 +107,7 @@ class PlatformRefusalChildJvmTest {
         assertEquals(report, logged.subList(1, logged.size()), String.join("\n", run.err()));
         assertTrue(logged.getFirst().startsWith("placement criticality-deadline, 4 dispatchers"), logged.getFirst());
         for (int id = 0; id < 4; id++) {
-            assertTrue(logged.get(1 + id).startsWith("rt-dispatcher-" + id + " tid="), logged.get(1 + id));
+            assertTrue(logged.get(1 + id).startsWith("rt-dispatcher-" + id + "@probe tid="), logged.get(1 + id));
             assertTrue(logged.get(1 + id).contains(": requested SCHED_"), logged.get(1 + id));
             assertTrue(logged.get(1 + id).contains(", granted SCHED_"), logged.get(1 + id));
         }
