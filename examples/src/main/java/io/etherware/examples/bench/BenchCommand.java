@@ -1,5 +1,6 @@
 package io.etherware.examples.bench;
 
+import io.etherware.examples.output.OutputDirectory;
 import io.etherware.rt.platform.CpuLatencyHold;
 import java.io.PrintWriter;
 import java.nio.file.Path;
@@ -93,6 +94,7 @@ public final class BenchCommand implements Callable<Integer> {
             throw new ParameterException(spec.commandLine(), "--duration-s=" + durationS
                     + " is out of range: use 1 to 3600 seconds");
         }
+        OutputDirectory.requireUsable(spec.commandLine(), "--out", out);
         if (repetitions != null && (repetitions < 5 || repetitions > 100_000)) {
             throw new ParameterException(spec.commandLine(), "--repetitions=" + repetitions
                     + " is out of range: use 5 to 100000");
