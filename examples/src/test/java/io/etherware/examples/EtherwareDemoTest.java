@@ -204,14 +204,26 @@ class EtherwareDemoTest {
 
     @Test
     void shouldNameTheBenchDurationWhenItIsOutOfRange() {
+        assertEquals(2, execute("bench", "--duration", "0"));
+        assertTrue(err.toString().contains("--duration=0.0 is out of range"), err.toString());
+    }
+
+    @Test
+    void shouldTakeTheBenchsOldDurationNameWithoutShowingIt() {
         assertEquals(2, execute("bench", "--duration-s", "0"));
-        assertTrue(err.toString().contains("--duration-s=0.0 is out of range"), err.toString());
+        assertTrue(err.toString().contains("--duration=0.0 is out of range"), err.toString());
+        err.getBuffer().setLength(0);
+        assertEquals(2, execute("bench", "--duration-s", "20", "--duration", "30"));
+        assertTrue(err.toString().contains("--duration-s is the old name of --duration: give one"), err.toString());
+        assertEquals(0, execute("bench", "--help"));
+        assertTrue(out.toString().contains("--duration=SECONDS") && !out.toString().contains("--duration-s"),
+                out.toString());
     }
 
     @Test
     void shouldRefuseQuickWithADuration() {
-        assertEquals(2, execute("bench", "--quick", "--duration-s", "20"));
-        assertTrue(err.toString().contains("--duration-s=20.0 with --quick"), err.toString());
+        assertEquals(2, execute("bench", "--quick", "--duration", "20"));
+        assertTrue(err.toString().contains("--duration=20.0 with --quick"), err.toString());
     }
 
     @Test
