@@ -1,5 +1,6 @@
 package io.etherware.examples.bench;
 
+import io.etherware.examples.output.OutputDirectory;
 import io.etherware.rt.platform.CpuLatencyHold;
 import java.io.PrintWriter;
 import java.nio.file.Path;
@@ -29,14 +30,14 @@ import picocli.CommandLine.Spec;
                     + " idle and under a LOW flood; throughput between two components; the XML codec beside Jackson"
                     + " JSON; a loopback request/reply beside raw TCP; the upgrade gap; the collector's pauses.",
             "Default: 60 s per periodic row, about 10 minutes in all; --quick takes about 30 s."},
-        footer = {"", "Example: etherware-demo bench --duration-s 20 --out /tmp/bench"})
+        footer = {"", "Example: etherware-demo bench --duration 20 --out /tmp/bench"})
 public final class BenchCommand implements Callable<Integer> {
 
     @Spec
     private CommandSpec spec;
 
-    @Option(names = "--duration-s", paramLabel = "SECONDS",
-            description = "Length of each periodic-lateness row in seconds (default: 60; at least 1).")
+    @Option(names = "--duration", paramLabel = "SECONDS",
+            description = "Length of each periodic-lateness row in seconds (default: 60; from 1 to 3600).")
     private Double durationS;
 
     @Option(names = "--quick", description = "About 30 s in all: checks the harness, not the figures.")
@@ -60,10 +61,14 @@ public final class BenchCommand implements Callable<Integer> {
             description = "Directory for report.md and report.json (default: ${DEFAULT-VALUE}).")
     private Path out;
 
+    /** {@code --duration}'s name until the bench took the scenarios' name for it; kept so old command lines run. */
+    @Option(names = "--duration-s", paramLabel = "SECONDS", hidden = true)
+    private Double oldDurationS;
+
     @Override
     public Integer call() throws Exception {
         BenchConfig config = config();
-        String settings = (quick ? "--quick" : "--duration-s " + (durationS == null ? BenchConfig.DEFAULT_PERIODIC_S
+        String settings = (quick ? "--quick" : "--duration " + (durationS == null ? BenchConfig.DEFAULT_PERIODIC_S
                 : durationS)) + (repetitions == null ? "" : " --repetitions " + repetitions) + (onlySections.isEmpty() ? "" : " --section " + onlySections.stream()
                 .map(String::valueOf).collect(Collectors.joining(",")));
         BenchReport report;
@@ -81,8 +86,14 @@ public final class BenchCommand implements Callable<Integer> {
     }
 
     private BenchConfig config() {
+        if (oldDurationS != null) {
+            if (durationS != null) {
+                throw new ParameterException(spec.commandLine(), "--duration-s is the old name of --duration: give one");
+            }
+            durationS = oldDurationS;
+        }
         if (quick && durationS != null) {
-            throw new ParameterException(spec.commandLine(), "--duration-s=" + durationS + " with --quick: choose one");
+            throw new ParameterException(spec.commandLine(), "--duration=" + durationS + " with --quick: choose one");
         }
         for (int section : onlySections) {
             if (section < 1 || section > 6) {
@@ -90,9 +101,10 @@ public final class BenchCommand implements Callable<Integer> {
             }
         }
         if (durationS != null && !(durationS >= 1 && durationS <= 3600)) {
-            throw new ParameterException(spec.commandLine(), "--duration-s=" + durationS
+            throw new ParameterException(spec.commandLine(), "--duration=" + durationS
                     + " is out of range: use 1 to 3600 seconds");
         }
+        OutputDirectory.requireUsable(spec.commandLine(), "--out", out);
         if (repetitions != null && (repetitions < 5 || repetitions > 100_000)) {
             throw new ParameterException(spec.commandLine(), "--repetitions=" + repetitions
                     + " is out of range: use 5 to 100000");

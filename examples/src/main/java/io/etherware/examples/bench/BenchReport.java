@@ -14,7 +14,7 @@ import java.util.Locale;
  * Immutable.
  *
  * @param startedAt   when the run started, ISO-8601 UTC
- * @param settings    the run's settings as one line, e.g. {@code --duration-s 60}
+ * @param settings    the run's settings as one line, e.g. {@code --duration 60}
  * @param machine     the machine and JVM
  * @param rows        every row, in report order
  * @param gcPauses    the collector pauses seen during the run

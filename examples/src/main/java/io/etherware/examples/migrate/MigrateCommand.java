@@ -20,6 +20,7 @@ import picocli.CommandLine.Spec;
  * <p>Run by picocli on the main thread.
  */
 @Command(name = "migrate", mixinStandardHelpOptions = true, sortOptions = false,
+        modelTransformer = ScenarioOptions.DurationHelp.class,
         header = "Move the controller to another node while it balances (Section VI-C2), across two JVMs.",
         description = {
             "Move the pendulum's controller between nodes while it balances (paper Section VI-C2, Fig. 10 and 12):"
@@ -35,12 +36,18 @@ public final class MigrateCommand implements Callable<Integer> {
     @Spec
     private CommandSpec spec;
 
+    /** {@code --duration}: 60 s by default, at least 2 s on each node. */
+    static final ScenarioOptions.DurationRule DURATION = new ScenarioOptions.DurationRule(
+            MigrateConfig.DEFAULT_DURATION_NS / 1e9, MigrateConfig.MIN_DURATION_NS / 1e9,
+            MigrateConfig.MIN_PHASE_NS / 1_000_000_000L
+                    + " s on node 2 before the migration and as much on node 1 after it");
+
     @Mixin
-    private ScenarioOptions common;
+    private ScenarioOptions common = new ScenarioOptions(DURATION);
 
     @Option(names = "--migrate-at", paramLabel = "SECONDS",
             description = "When the requester asks for the migration, in seconds after the start (default: 40, or"
-                    + " two thirds of the duration if shorter).")
+                    + " two thirds of the duration if shorter, and no later than 2 s before the end).")
     private Double migrateAtS;
 
     @Override
@@ -58,18 +65,14 @@ public final class MigrateCommand implements Callable<Integer> {
         return outcome.migrated() ? 0 : 1;
     }
 
+    /** The run's settings; every option is checked here, in option terms, before the config sees it. */
     private MigrateConfig config() {
-        long durationNs = common.durationNs(MigrateConfig.DEFAULT_DURATION_NS / 1e9);
-        MigrateConfig config;
-        try {
-            config = MigrateConfig.of(durationNs, common.periodNs(), common.out("migrate"))
-                    .withBaudRate(common.baudRate());
-        } catch (IllegalArgumentException e) {
-            throw new ParameterException(spec.commandLine(), e.getMessage());
-        }
+        long durationNs = common.durationNs();
+        MigrateConfig config = MigrateConfig.of(durationNs, common.periodNs(), common.out("migrate"))
+                .withBaudRate(common.baudRate());
         if (migrateAtS != null) {
             long atNs = Math.round(migrateAtS * 1e9);
-            if (!(atNs >= 2_000_000_000L && atNs <= durationNs - 2_000_000_000L)) {
+            if (!(atNs >= MigrateConfig.MIN_PHASE_NS && atNs <= durationNs - MigrateConfig.MIN_PHASE_NS)) {
                 throw new ParameterException(spec.commandLine(), "--migrate-at=" + migrateAtS + " is out of range:"
                         + " leave at least 2 s before it and 2 s after it within --duration (" + durationNs / 1e9
                         + " s)");

@@ -23,6 +23,10 @@ public record MigrateConfig(long durationNs, long periodNs, long migrateAtNs, do
 
     /** A minute: 40 s on node 2, then 20 s on node 1. */
     public static final long DEFAULT_DURATION_NS = 60_000_000_000L;
+    /** The least time on each node: node 2 before the migration, node 1 after it. */
+    public static final long MIN_PHASE_NS = 2_000_000_000L;
+    /** The shortest run: {@link #MIN_PHASE_NS} on node 2, then as much on node 1. */
+    public static final long MIN_DURATION_NS = 2 * MIN_PHASE_NS;
     /** The paper's migration time: t = 40 s. */
     public static final long DEFAULT_MIGRATE_AT_NS = 40_000_000_000L;
     /** The node with the DSP board and the DSPProxy (the paper's node 1): the migration's target. */
@@ -32,13 +36,13 @@ public record MigrateConfig(long durationNs, long periodNs, long migrateAtNs, do
 
     public MigrateConfig {
         Objects.requireNonNull(out, "out");
-        if (durationNs < 4_000_000_000L || durationNs > 3_600_000_000_000L) {
+        if (durationNs < MIN_DURATION_NS || durationNs > 3_600_000_000_000L) {
             throw new IllegalArgumentException("durationNs=" + durationNs + ": must be within 4 s .. 1 h");
         }
         if (periodNs < 1_000_000L || periodNs > 1_000_000_000L) {
             throw new IllegalArgumentException("periodNs=" + periodNs + ": must be within 1 ms .. 1 s");
         }
-        if (migrateAtNs < 2_000_000_000L || migrateAtNs > durationNs - 2_000_000_000L) {
+        if (migrateAtNs < MIN_PHASE_NS || migrateAtNs > durationNs - MIN_PHASE_NS) {
             throw new IllegalArgumentException("migrateAtNs=" + migrateAtNs
                     + ": must leave at least 2 s on each node, within durationNs=" + durationNs);
         }
@@ -48,10 +52,13 @@ public record MigrateConfig(long durationNs, long periodNs, long migrateAtNs, do
         }
     }
 
-    /** The defaults, or the migration two thirds into a run shorter than a minute. */
+    /**
+     * The defaults, or the migration two thirds into a run shorter than a minute, and no later
+     * than {@link #MIN_PHASE_NS} before the end of a run shorter than 6 s.
+     */
     public static MigrateConfig of(long durationNs, long periodNs, Path out) {
-        return new MigrateConfig(durationNs, periodNs, Math.min(DEFAULT_MIGRATE_AT_NS, durationNs * 2 / 3), 0.02, out,
-                PlantWiring.DEFAULT_BAUD_RATE);
+        long migrateAtNs = Math.min(DEFAULT_MIGRATE_AT_NS, Math.min(durationNs * 2 / 3, durationNs - MIN_PHASE_NS));
+        return new MigrateConfig(durationNs, periodNs, migrateAtNs, 0.02, out, PlantWiring.DEFAULT_BAUD_RATE);
     }
 
     /**

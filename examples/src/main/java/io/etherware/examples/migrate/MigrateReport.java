@@ -20,8 +20,6 @@ import java.util.Locale;
  */
 public final class MigrateReport {
 
-    private static final double PLOT_RANGE_RAD = 0.1;
-
     private MigrateReport() {
     }
 
@@ -71,8 +69,8 @@ public final class MigrateReport {
     /** Writes the CSV, the summary, the plot and node 2's log; returns the files written. */
     public static List<Path> write(MigrateConfig config, MigrateOutcome outcome) throws IOException {
         List<Path> written = new ArrayList<>(report(config, outcome).write(config.out(), "migrate",
-                String.format(Locale.ROOT, "Migration node 2 → node 1 at %.0f s: joint angles",
-                        outcome.run().secondsOf(outcome.requestNs())), PLOT_RANGE_RAD));
+                String.format(Locale.ROOT, "Migration node 2 → node 1 at %.0f s",
+                        outcome.run().secondsOf(outcome.requestNs()))));
         Path nodeLog = config.out().resolve("node-2.log");
         if (Files.exists(nodeLog)) {
             written.add(nodeLog);

@@ -26,6 +26,7 @@ import picocli.CommandLine.Spec;
  * <p>Run by picocli on the main thread.
  */
 @Command(name = "netstress", mixinStandardHelpOptions = true, sortOptions = false,
+        modelTransformer = ScenarioOptions.DurationHelp.class,
         header = "Networked control under computational stress on both nodes, original Etherware vs Etherware-RT.",
         description = {
             "The stress experiment (paper Section VI-B) in the two-node topology of Fig. 10: node 1 (this JVM) holds"
@@ -43,7 +44,7 @@ public final class NetStressCommand implements Callable<Integer> {
     private CommandSpec spec;
 
     @Mixin
-    private ScenarioOptions common;
+    private ScenarioOptions common = new ScenarioOptions(StressOptions.DURATION);
 
     @Mixin
     private StressOptions stress;

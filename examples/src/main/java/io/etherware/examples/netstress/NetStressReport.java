@@ -16,7 +16,7 @@ import java.util.function.Function;
 /**
  * The networked stress experiment's table and files: the stress table with rows for each node's
  * scheduler-counted deadline misses, the control cycles lost and the stress activations; per run
- * {@code netstress-<run>.csv} and {@code .png/.svg}, {@code netstress.png/.svg} comparing θ2,
+ * {@code netstress-<run>.csv} and {@code .png/.svg}, {@code netstress.png/.svg} with the runs overlaid,
  * {@code summary.txt}, and node 2's logs, in the output directory.
  *
  * <p>Stateless and thread-safe.

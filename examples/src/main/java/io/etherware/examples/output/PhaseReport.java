@@ -46,11 +46,11 @@ public record PhaseReport(String heading, ScenarioRun run, List<ScenarioRun> pha
     }
 
     /**
-     * Writes {@code <name>.csv}, {@code summary.txt} and the joint-angle plot titled
-     * {@code plotTitle} (at least ±{@code plotRangeRad}) into {@code out}; returns the files
-     * written. A plot that cannot be drawn is logged; the CSV and the summary are written anyway.
+     * Writes {@code <name>.csv}, {@code summary.txt} and the run's plot ({@link TracePlots})
+     * titled {@code plotTitle} into {@code out}; returns the files written. A plot that cannot be
+     * drawn is logged; the CSV and the summary are written anyway.
      */
-    public List<Path> write(Path out, String name, String plotTitle, double plotRangeRad) throws IOException {
+    public List<Path> write(Path out, String name, String plotTitle) throws IOException {
         Files.createDirectories(out);
         List<Path> written = new ArrayList<>();
         Path csv = out.resolve(name + ".csv");
@@ -60,7 +60,7 @@ public record PhaseReport(String heading, ScenarioRun run, List<ScenarioRun> pha
         Files.writeString(summary, heading + "\n\n" + body(), StandardCharsets.UTF_8);
         written.add(summary);
         try {
-            written.addAll(AnglePlots.save(AnglePlots.jointAngles(run, plotTitle, plotRangeRad), out.resolve(name)));
+            written.addAll(TracePlots.of(run, plotTitle).save(out.resolve(name)));
         } catch (IOException | RuntimeException | LinkageError | AWTError e) {
             LOG.error("could not draw the plot ({}); the CSV and summary are complete", e.toString(), e);
         }

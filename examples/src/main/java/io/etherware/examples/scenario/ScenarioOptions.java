@@ -1,7 +1,11 @@
 package io.etherware.examples.scenario;
 
+import io.etherware.examples.output.OutputDirectory;
+import java.math.BigDecimal;
 import java.nio.file.Path;
+import java.util.ListResourceBundle;
 import java.util.concurrent.TimeUnit;
+import picocli.CommandLine.IModelTransformer;
 import picocli.CommandLine.Model.CommandSpec;
 import picocli.CommandLine.Option;
 import picocli.CommandLine.ParameterException;
@@ -9,7 +13,8 @@ import picocli.CommandLine.Spec;
 
 /**
  * The options every scenario takes ({@code --duration}, {@code --period-ms}, {@code --baud}, {@code --out}), as a
- * picocli mixin. Each scenario supplies its own default duration.
+ * picocli mixin. Each scenario gives its own {@link DurationRule}; a command that names
+ * {@link DurationHelp} as its model transformer shows that rule in its {@code --duration} help.
  *
  * <p>Filled in by picocli on the command's thread; not thread-safe.
  */
@@ -17,6 +22,63 @@ public final class ScenarioOptions {
 
     /** Longest run accepted, seconds. */
     public static final double MAX_DURATION_S = 3_600.0;
+    /** Shortest run accepted where the scenario needs no more, seconds. */
+    public static final double MIN_DURATION_S = 1.0;
+
+    /**
+     * What {@code --duration} means in one scenario.
+     *
+     * @param defaultS  the length of a run when {@code --duration} is not given, seconds
+     * @param minS      the shortest run the scenario can do, seconds
+     * @param minReason why it can do no shorter, as the help and the error say it (empty: no more
+     *                  than the general minimum)
+     */
+    public record DurationRule(double defaultS, double minS, String minReason) {
+
+        public DurationRule {
+            if (!(minS >= MIN_DURATION_S && minS <= defaultS && defaultS <= MAX_DURATION_S)) {
+                throw new IllegalArgumentException("minS=" + minS + ", defaultS=" + defaultS + ": must satisfy "
+                        + MIN_DURATION_S + " <= minS <= defaultS <= " + MAX_DURATION_S);
+            }
+            minReason = minReason == null ? "" : minReason;
+        }
+
+        /** The general range, from 1 s, with the default {@code defaultS}. */
+        public static DurationRule withDefault(double defaultS) {
+            return new DurationRule(defaultS, MIN_DURATION_S, "");
+        }
+
+        /** The {@code --duration} help line. */
+        String help() {
+            return "Length of each run in seconds (default: " + seconds(defaultS) + "; at least " + seconds(minS)
+                    + (minReason.isEmpty() ? "" : ": " + minReason) + "; at most " + seconds(MAX_DURATION_S) + ").";
+        }
+    }
+
+    /**
+     * Puts the scenario's {@link DurationRule} into its {@code --duration} help; name it as the
+     * command's {@code modelTransformer}. The option comes from this mixin, the same for every
+     * scenario, so picocli is handed the command's own text the way it takes translated ones: a
+     * resource bundle with the option's key.
+     */
+    public static final class DurationHelp implements IModelTransformer {
+        @Override
+        public CommandSpec transform(CommandSpec command) {
+            ScenarioOptions options = command.mixins().values().stream().map(CommandSpec::userObject)
+                    .filter(ScenarioOptions.class::isInstance).map(ScenarioOptions.class::cast).findFirst()
+                    .orElseThrow(() -> new IllegalStateException(command.name() + " has no ScenarioOptions mixin"));
+            String help = options.durationRule.help();
+            command.resourceBundle(new ListResourceBundle() {
+                @Override
+                protected Object[][] getContents() {
+                    return new Object[][] {{"duration", help}};
+                }
+            });
+            return command;
+        }
+    }
+
+    private final DurationRule durationRule;
 
     @Spec(Spec.Target.MIXEE)
     private CommandSpec spec;
@@ -39,14 +101,24 @@ public final class ScenarioOptions {
             description = "Directory for the CSV, plots and table (default: target/scenarios/<scenario>).")
     private Path out;
 
-    /** The run length in nanoseconds, {@code defaultS} when not given; a bad value is a usage error. */
-    public long durationNs(double defaultS) {
-        double seconds = durationS == null ? defaultS : durationS;
-        if (!(seconds >= 1.0 && seconds <= MAX_DURATION_S)) {
-            throw new ParameterException(spec.commandLine(), "--duration=" + durationS
-                    + " is out of range: give the seconds of each run, from 1 to " + (long) MAX_DURATION_S);
+    /** Options for a scenario whose {@code --duration} follows {@code durationRule}. */
+    public ScenarioOptions(DurationRule durationRule) {
+        this.durationRule = durationRule;
+    }
+
+    /** The run length in nanoseconds, the rule's default when not given; too short or too long is a usage error. */
+    public long durationNs() {
+        double lengthS = durationS == null ? durationRule.defaultS() : durationS;
+        if (!(lengthS >= durationRule.minS())) {
+            throw new ParameterException(spec.commandLine(), "--duration " + seconds(lengthS) + ": must be at least "
+                    + seconds(durationRule.minS()) + " s for " + article(spec.name()) + " run"
+                    + (durationRule.minReason().isEmpty() ? "" : " (" + durationRule.minReason() + ")"));
         }
-        return Math.round(seconds * 1e9);
+        if (!(lengthS <= MAX_DURATION_S)) {
+            throw new ParameterException(spec.commandLine(), "--duration " + seconds(lengthS) + ": must be at most "
+                    + seconds(MAX_DURATION_S) + " s (an hour)");
+        }
+        return Math.round(lengthS * 1e9);
     }
 
     /** The control period in nanoseconds; a bad value is a usage error. */
@@ -70,8 +142,24 @@ public final class ScenarioOptions {
         return baudRate;
     }
 
-    /** The output directory, {@code target/scenarios/<scenario>} when not given. */
+    /**
+     * The output directory, {@code target/scenarios/<scenario>} when not given; one that cannot
+     * take the results (a file, a path through a file, not writable) is a usage error, before
+     * anything runs.
+     */
     public Path out(String scenario) {
-        return out != null ? out : Path.of("target", "scenarios", scenario);
+        Path dir = out != null ? out : Path.of("target", "scenarios", scenario);
+        OutputDirectory.requireUsable(spec.commandLine(), "--out", dir);
+        return dir;
+    }
+
+    /** Seconds as a user types them: {@code 2}, {@code 2.5}. */
+    private static String seconds(double value) {
+        return Double.isFinite(value) ? BigDecimal.valueOf(value).stripTrailingZeros().toPlainString()
+                : Double.toString(value);
+    }
+
+    private static String article(String word) {
+        return ("aeiou".indexOf(Character.toLowerCase(word.charAt(0))) >= 0 ? "an " : "a ") + word;
     }
 }

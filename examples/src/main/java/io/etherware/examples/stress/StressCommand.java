@@ -22,6 +22,7 @@ import picocli.CommandLine.Spec;
  * <p>Run by picocli on the main thread.
  */
 @Command(name = "stress", mixinStandardHelpOptions = true, sortOptions = false,
+        modelTransformer = ScenarioOptions.DurationHelp.class,
         header = "Periodic control under computational stress, original Etherware vs Etherware-RT (Section VI-B).",
         description = {
             "Balance the pendulum under computational stress (paper Section VI-B, Fig. 7 and 9), twice: on the"
@@ -40,7 +41,7 @@ public final class StressCommand implements Callable<Integer> {
     private CommandSpec spec;
 
     @Mixin
-    private ScenarioOptions common;
+    private ScenarioOptions common = new ScenarioOptions(StressOptions.DURATION);
 
     @Mixin
     private StressOptions stress;

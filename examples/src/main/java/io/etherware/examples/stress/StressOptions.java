@@ -14,6 +14,10 @@ import picocli.CommandLine.ParameterException;
  */
 public final class StressOptions {
 
+    /** {@code --duration} of {@code stress} and {@code netstress}: 20 s per run by default. */
+    public static final ScenarioOptions.DurationRule DURATION =
+            ScenarioOptions.DurationRule.withDefault(StressConfig.DEFAULT_DURATION_NS / 1e9);
+
     @Option(names = "--stress-every", paramLabel = "SECONDS", defaultValue = "5",
             description = "Period of the stress task's LOW Ticks in seconds (default: ${DEFAULT-VALUE}).")
     private double stressEveryS;
@@ -46,7 +50,7 @@ public final class StressOptions {
      * The configuration these options and {@code common} give, writing to {@code scenario}'s
      * default directory unless {@code --out} says otherwise.
      *
-     * @throws ParameterException naming the option, if one is out of range
+     * @throws ParameterException naming the option, if one is out of range or the output directory unusable
      */
     public StressConfig config(CommandLine commandLine, ScenarioOptions common, String scenario) {
         if (!(stressEveryS > 0 && stressEveryS <= 3_600)) {
@@ -82,7 +86,7 @@ public final class StressOptions {
             }
         }
         return StressConfig.defaults(common.out(scenario))
-                .withDurationNs(common.durationNs(StressConfig.DEFAULT_DURATION_NS / 1e9))
+                .withDurationNs(common.durationNs())
                 .withPeriodNs(periodNs)
                 .withStress(stressEveryNs, stressMs * 1_000_000L)
                 .withLoadThreads(threads)

@@ -1,8 +1,8 @@
 package io.etherware.examples.stress;
 
-import io.etherware.examples.output.AnglePlots;
 import io.etherware.examples.output.ComparisonTable;
 import io.etherware.examples.output.TraceCsv;
+import io.etherware.examples.output.TracePlots;
 import io.etherware.examples.scenario.RunSummary;
 import io.etherware.examples.scenario.ScenarioRun;
 import java.awt.AWTError;
@@ -18,8 +18,8 @@ import org.slf4j.LoggerFactory;
 
 /**
  * Writes the stress scenario's results into its output directory: per run a CSV
- * ({@code stress-<run>.csv}) and a joint-angle plot ({@code stress-<run>.png/.svg}); the
- * comparison of θ2 over the runs ({@code stress.png/.svg}); and the table with the run notes
+ * ({@code stress-<run>.csv}) and a plot ({@code stress-<run>.png/.svg}); the runs overlaid in
+ * one plot ({@code stress.png/.svg}); and the table with the run notes
  * ({@code summary.txt}). The CSVs and the table are written first, so a plotting failure (no
  * fonts on a headless box, say) loses nothing else: it is logged and the plot is left out.
  *
@@ -54,7 +54,7 @@ public final class StressReport {
 
     /**
      * Writes a stress-like scenario's files into {@code out}: {@code <name>-<run>.csv} and
-     * {@code .png/.svg} per run, {@code <name>.png/.svg} comparing θ2, and {@code summary.txt} with
+     * {@code .png/.svg} per run, {@code <name>.png/.svg} with the runs overlaid, and {@code summary.txt} with
      * {@code heading}, {@code table} and the run notes; {@code what} begins the plot titles.
      * Returns the files written, in order.
      */
@@ -74,12 +74,11 @@ public final class StressReport {
         written.add(summary);
 
         for (ScenarioRun run : runs) {
-            plot(written, () -> AnglePlots.save(AnglePlots.jointAngles(run, what + ", " + run.title()
-                    + ": joint angles"), out.resolve(name + "-" + run.key())));
+            plot(written, () -> TracePlots.of(run, what + ", " + run.title())
+                    .save(out.resolve(name + "-" + run.key())));
         }
-        plot(written, () -> AnglePlots.save(AnglePlots.compareTheta2(runs, "Pendulum angle under "
-                + what.toLowerCase(Locale.ROOT) + ": " + String.join(" vs ", runs.stream().map(ScenarioRun::title)
-                .toList())), out.resolve(name)));
+        String titles = String.join(" vs ", runs.stream().map(ScenarioRun::title).toList());
+        plot(written, () -> TracePlots.of(runs, what + ": " + titles).save(out.resolve(name)));
         return written;
     }
 

@@ -25,6 +25,7 @@ import picocli.CommandLine.Spec;
  * <p>Run by picocli on the main thread.
  */
 @Command(name = "upgrade", mixinStandardHelpOptions = true, sortOptions = false,
+        modelTransformer = ScenarioOptions.DurationHelp.class,
         header = "Replace the controller V1 by V2 from a plugin jar while it balances (Section VI-C1).",
         description = {
             "Replace the pendulum's controller while it balances (paper Section VI-C1, Fig. 10 and 11): V1 (soft"
@@ -39,8 +40,13 @@ public final class UpgradeCommand implements Callable<Integer> {
     @Spec
     private CommandSpec spec;
 
+    /** {@code --duration}: 60 s by default, at least a second of each controller version. */
+    static final ScenarioOptions.DurationRule DURATION = new ScenarioOptions.DurationRule(
+            UpgradeConfig.DEFAULT_DURATION_NS / 1e9, UpgradeConfig.MIN_DURATION_NS / 1e9,
+            UpgradeConfig.MIN_PHASE_NS / 1_000_000_000L + " s of V1 before the upgrade and as much of V2 after it");
+
     @Mixin
-    private ScenarioOptions common;
+    private ScenarioOptions common = new ScenarioOptions(DURATION);
 
     @Option(names = "--upgrade-at", paramLabel = "SECONDS",
             description = "When the management request asks for V2, in seconds after the start (default: 30, or"
@@ -68,7 +74,7 @@ public final class UpgradeCommand implements Callable<Integer> {
     }
 
     private UpgradeConfig config() throws IOException {
-        long durationNs = common.durationNs(UpgradeConfig.DEFAULT_DURATION_NS / 1e9);
+        long durationNs = common.durationNs();
         Path plugin = jar != null ? jar : defaultJar();
         if (!Files.isRegularFile(plugin)) {
             throw new ParameterException(spec.commandLine(), "--jar=" + plugin + " is not a file: give the plugin jar"
@@ -78,7 +84,7 @@ public final class UpgradeCommand implements Callable<Integer> {
                 .withBaudRate(common.baudRate());
         if (upgradeAtS != null) {
             long atNs = Math.round(upgradeAtS * 1e9);
-            if (!(atNs >= 1_000_000_000L && atNs <= durationNs - 1_000_000_000L)) {
+            if (!(atNs >= UpgradeConfig.MIN_PHASE_NS && atNs <= durationNs - UpgradeConfig.MIN_PHASE_NS)) {
                 throw new ParameterException(spec.commandLine(), "--upgrade-at=" + upgradeAtS + " is out of range:"
                         + " leave at least 1 s before it and 1 s after it within --duration (" + durationNs / 1e9
                         + " s)");

@@ -22,6 +22,10 @@ public record UpgradeConfig(long durationNs, long periodNs, long upgradeAtNs, Pa
     public static final long DEFAULT_DURATION_NS = 60_000_000_000L;
     /** The paper's 15 ms control period. */
     public static final long DEFAULT_PERIOD_NS = 15_000_000L;
+    /** The least time on each controller version: V1 before the upgrade, V2 after it. */
+    public static final long MIN_PHASE_NS = 1_000_000_000L;
+    /** The shortest run: {@link #MIN_PHASE_NS} of V1, then as much of V2. */
+    public static final long MIN_DURATION_NS = 2 * MIN_PHASE_NS;
     /** The paper's upgrade time: t = 30 s. */
     public static final long DEFAULT_UPGRADE_AT_NS = 30_000_000_000L;
     /** The class of controller V2 in the plugin jar. */
@@ -32,13 +36,13 @@ public record UpgradeConfig(long durationNs, long periodNs, long upgradeAtNs, Pa
     public UpgradeConfig {
         Objects.requireNonNull(jar, "jar");
         Objects.requireNonNull(out, "out");
-        if (durationNs < 2_000_000_000L || durationNs > 3_600_000_000_000L) {
+        if (durationNs < MIN_DURATION_NS || durationNs > 3_600_000_000_000L) {
             throw new IllegalArgumentException("durationNs=" + durationNs + ": must be within 2 s .. 1 h");
         }
         if (periodNs < 1_000_000L || periodNs > 1_000_000_000L) {
             throw new IllegalArgumentException("periodNs=" + periodNs + ": must be within 1 ms .. 1 s");
         }
-        if (upgradeAtNs < 1_000_000_000L || upgradeAtNs > durationNs - 1_000_000_000L) {
+        if (upgradeAtNs < MIN_PHASE_NS || upgradeAtNs > durationNs - MIN_PHASE_NS) {
             throw new IllegalArgumentException("upgradeAtNs=" + upgradeAtNs
                     + ": must leave at least 1 s of V1 before and 1 s of V2 after, within durationNs=" + durationNs);
         }

@@ -22,9 +22,6 @@ import java.util.Optional;
  */
 public final class UpgradeReport {
 
-    /** Small enough to see the arm settle differently under V1 and V2. */
-    private static final double UPGRADE_PLOT_RANGE_RAD = 0.1;
-
     private UpgradeReport() {
     }
 
@@ -97,8 +94,7 @@ public final class UpgradeReport {
     /** Writes the CSV, the summary and the plot; returns the files written. */
     public static List<Path> write(UpgradeConfig config, UpgradeOutcome outcome) throws IOException {
         return report(config, outcome).write(config.out(), "upgrade", String.format(Locale.ROOT,
-                "Upgrade V1 (soft) → V2 (tight) at %.0f s: joint angles", outcome.run().secondsOf(outcome.requestNs())),
-                UPGRADE_PLOT_RANGE_RAD);
+                "Upgrade V1 (soft) → V2 (tight) at %.0f s", outcome.run().secondsOf(outcome.requestNs())));
     }
 
     private static String simpleName(String className) {

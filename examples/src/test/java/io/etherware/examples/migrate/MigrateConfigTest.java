@@ -24,6 +24,12 @@ class MigrateConfigTest {
     }
 
     @Test
+    void shouldLeaveTwoSecondsOnNode1ByDefaultInTheShortestRuns() {
+        assertEquals(2_000_000_000L, MigrateConfig.of(MigrateConfig.MIN_DURATION_NS, 15_000_000L, OUT).migrateAtNs());
+        assertEquals(3_000_000_000L, MigrateConfig.of(5_000_000_000L, 15_000_000L, OUT).migrateAtNs());
+    }
+
+    @Test
     void shouldNameTheFieldWhenTheMigrationLeavesTooLittleTimeOnANode() {
         var error = assertThrows(IllegalArgumentException.class,
                 () -> MigrateConfig.of(10_000_000_000L, 15_000_000L, OUT).withMigrateAtNs(9_000_000_000L));
