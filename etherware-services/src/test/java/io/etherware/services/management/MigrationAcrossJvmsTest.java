@@ -8,6 +8,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import example.counter.ReportingCounter;
 import io.etherware.core.kernel.Endpoint;
 import io.etherware.core.message.Profile;
+import io.etherware.testkit.Await;
 import java.io.BufferedReader;
 import java.io.IOException;
 import java.io.InputStreamReader;

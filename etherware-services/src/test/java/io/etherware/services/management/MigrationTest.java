@@ -17,6 +17,7 @@ import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageId;
 import io.etherware.core.message.Origin;
 import io.etherware.core.message.Profile;
+import io.etherware.testkit.Await;
 import java.time.Duration;
 import java.util.List;
 import java.util.Set;

@@ -15,6 +15,7 @@ import io.etherware.core.message.Origin;
 import io.etherware.core.message.Profile;
 import io.etherware.core.message.Text;
 import io.etherware.services.management.AccessRule.Operation;
+import io.etherware.testkit.Await;
 import java.util.Set;
 import java.util.concurrent.CopyOnWriteArrayList;
 import org.junit.jupiter.api.Test;

@@ -20,6 +20,7 @@ import io.etherware.core.scheduler.Scheduler;
 import io.etherware.rt.scheduling.RealtimeScheduler;
 import io.etherware.rt.scheduling.RealtimeSchedulerConfig;
 import io.etherware.rt.scheduling.ThreadSchedulingRule;
+import io.etherware.testkit.Await;
 import java.io.IOException;
 import java.nio.file.Files;
 import java.nio.file.Path;

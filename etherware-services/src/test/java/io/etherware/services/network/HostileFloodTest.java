@@ -9,6 +9,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.etherware.core.message.MessageId;
 import io.etherware.core.message.Text;
+import io.etherware.testkit.Await;
 import java.io.IOException;
 import java.net.Socket;
 import java.nio.ByteBuffer;

@@ -14,6 +14,7 @@ import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageId;
 import io.etherware.core.message.Profile;
 import io.etherware.core.message.Text;
+import io.etherware.testkit.Await;
 import java.io.IOException;
 import java.io.InputStream;
 import java.net.InetSocketAddress;

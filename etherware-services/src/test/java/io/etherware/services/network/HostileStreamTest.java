@@ -9,6 +9,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import io.etherware.core.component.RequestFailedException.Reason;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageId;
+import io.etherware.testkit.Await;
 import java.io.IOException;
 import java.time.Duration;
 import java.util.List;

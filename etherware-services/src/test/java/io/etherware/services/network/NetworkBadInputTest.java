@@ -9,6 +9,7 @@ import io.etherware.core.message.MessageId;
 import io.etherware.core.message.Profile;
 import io.etherware.core.message.QoS;
 import io.etherware.core.message.Text;
+import io.etherware.testkit.Await;
 import java.nio.charset.StandardCharsets;
 import java.time.Duration;
 import java.util.List;

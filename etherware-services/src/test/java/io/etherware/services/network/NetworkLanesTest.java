@@ -13,6 +13,7 @@ import io.etherware.core.time.NodeClock;
 import io.etherware.rt.scheduling.RealtimeScheduler;
 import io.etherware.rt.scheduling.RealtimeSchedulerConfig;
 import io.etherware.rt.scheduling.ThreadSchedulingRule;
+import io.etherware.testkit.Await;
 import java.time.Duration;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.CountDownLatch;

@@ -10,6 +10,7 @@ import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
 import io.etherware.core.message.QoS;
 import io.etherware.core.message.Text;
+import io.etherware.testkit.Await;
 import java.time.Duration;
 import java.util.List;
 import java.util.concurrent.LinkedBlockingQueue;

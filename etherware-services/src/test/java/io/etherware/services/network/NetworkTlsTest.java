@@ -8,6 +8,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import io.etherware.core.message.Origin;
 import io.etherware.core.message.Profile;
 import io.etherware.core.message.Text;
+import io.etherware.testkit.Await;
 import java.io.IOException;
 import java.io.UncheckedIOException;
 import java.net.InetSocketAddress;

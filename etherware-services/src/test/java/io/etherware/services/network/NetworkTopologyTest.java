@@ -7,6 +7,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import io.etherware.core.kernel.Endpoint;
 import io.etherware.core.message.Profile;
 import io.etherware.core.message.Text;
+import io.etherware.testkit.Await;
 import java.time.Duration;
 import java.util.Set;
 import java.util.concurrent.CountDownLatch;
