@@ -28,7 +28,7 @@ import org.junit.jupiter.api.Test;
  */
 class RemoteRequestTest {
 
-    private static final Profile COUNTER = UpgradeTest.COUNTER;
+    private static final Profile COUNTER = Profile.parse("counter[loop=1]");
     private static final Profile INBOX = Profile.of("inbox");
     private static final String CONTROLLER = "controller-node";
 

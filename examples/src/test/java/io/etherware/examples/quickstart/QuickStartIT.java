@@ -6,7 +6,7 @@ import java.time.Duration;
 import org.junit.jupiter.api.Test;
 
 /** The README's complete program runs: the Notifier accepts the subscription and the room warms. */
-class QuickStartTest {
+class QuickStartIT {
 
     @Test
     void shouldWarmTheRoomTowardItsSetPointAcrossTwoNodes() throws Exception {

@@ -41,7 +41,7 @@ import org.junit.jupiter.api.Test;
  * messages come from a {@link PeriodicSender}: a HIGH one to A every period, a short LOW one to B
  * every fifth.
  */
-class NodePriorityIsolationTest {
+class NodePriorityIsolationIT {
 
     private static final Profile A = Profile.of("a");
     private static final Profile B = Profile.of("b");

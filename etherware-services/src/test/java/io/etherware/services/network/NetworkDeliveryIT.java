@@ -30,7 +30,7 @@ import org.junit.jupiter.api.Test;
  * Nothing is lost silently: bulk order, reconnection with the peer alive (exactly once),
  * a peer killed and brought back, a peer that stays away, a congested peer.
  */
-class NetworkDeliveryTest {
+class NetworkDeliveryIT {
 
     private static final Profile SINK = Profile.of("sink");
     private static final Profile PUMP = Profile.of("pump");

@@ -14,7 +14,7 @@ import org.junit.jupiter.api.Test;
  * V1→V2 swap half way. Real time on a machine loaded by other builds: the assertions are physical
  * outcomes with generous margins; the timing figures come from {@link PendulumLoopHarness}.
  */
-class PendulumControllerRealTimeTest {
+class PendulumControllerRealTimeIT {
 
     @Test
     void shouldStayUprightInRealTimeAndAcrossASwapFromV1ToV2() throws Exception {

@@ -17,7 +17,7 @@ import org.junit.jupiter.api.io.TempDir;
  * trust store (made here as the README's keytool recipe makes it), and that lets one other node
  * upgrade and migrate its controllers.
  */
-class ReadmeManagementExampleTest {
+class ReadmeManagementExampleIT {
 
     @TempDir
     Path plugins;

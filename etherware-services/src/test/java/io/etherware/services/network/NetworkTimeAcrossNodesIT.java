@@ -14,7 +14,7 @@ import org.junit.jupiter.api.Test;
  * NetworkTime between two nodes, one of whose clocks is 2.5 s ahead and runs 50 ppm fast: the
  * estimate and the translated time stamps against the truth, which the test knows exactly.
  */
-class NetworkTimeAcrossNodesTest {
+class NetworkTimeAcrossNodesIT {
 
     private static final long OFFSET_NS = 2_500_000_000L;
     private static final double DRIFT_PPM = 50;

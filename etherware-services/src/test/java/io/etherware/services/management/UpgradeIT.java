@@ -39,9 +39,9 @@ import org.junit.jupiter.params.provider.ValueSource;
 
 /**
  * Upgrades through the management service: under a stream, from (signed) jars, rolled back,
- * refused. The signatures themselves are {@link UpgradeSignatureTest}'s subject.
+ * refused. The signatures themselves are {@link UpgradeSignatureIT}'s subject.
  */
-class UpgradeTest {
+class UpgradeIT {
 
     static final Profile COUNTER = Profile.parse("counter[loop=1]");
     private static final long PERIOD_NS = TimeUnit.MILLISECONDS.toNanos(1);

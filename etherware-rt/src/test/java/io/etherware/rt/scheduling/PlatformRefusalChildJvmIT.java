@@ -19,7 +19,7 @@ import org.junit.jupiter.api.Test;
  * JVM): refused without privileges, granted with them, and in both cases the node runs its HIGH
  * message and logs one {@code PlatformReport} line per dispatcher when it starts.
  */
-class PlatformRefusalChildJvmTest {
+class PlatformRefusalChildJvmIT {
 
     private static final Path SETPRIV = Path.of("/usr/bin/setpriv");
     private static final Path PRLIMIT = Path.of("/usr/bin/prlimit");

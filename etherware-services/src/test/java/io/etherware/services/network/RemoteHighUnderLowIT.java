@@ -33,7 +33,7 @@ import org.junit.jupiter.api.Test;
  * carry the HIGH requests and their replies. LOW work burns at most 1 ms at a time and rests as
  * long (no real-time thread keeps a CPU), bounded to the test's few seconds.
  */
-class RemoteHighUnderLowTest {
+class RemoteHighUnderLowIT {
 
     private static final Profile SENSOR = Profile.of("sensor");
     private static final Profile BACKGROUND = Profile.of("background");
@@ -102,11 +102,11 @@ class RemoteHighUnderLowTest {
             String summary = withinDeadline + " of " + REQUESTS + " HIGH round trips within "
                     + DEADLINE_NS / 1_000_000 + " ms, worst " + worstNs / 1000 + " us; LOW jobs done meanwhile: "
                     + lowDuringLoop + " of " + lowJobs;
-            System.out.println("RemoteHighUnderLowTest: " + summary);
+            System.out.println("RemoteHighUnderLowIT: " + summary);
             assertTrue(lowDuringLoop < lowJobs, "LOW work was still queued at the end: the loop ran under it: "
                     + summary);
             // A stock JVM's safepoints can hold a real-time thread now and then on a loaded
-            // 2-core machine (see NodePriorityIsolationTest): all answered, 95 % within the deadline.
+            // 2-core machine (see NodePriorityIsolationIT): all answered, 95 % within the deadline.
             assertTrue(withinDeadline >= REQUESTS * 95 / 100, summary);
         }
     }

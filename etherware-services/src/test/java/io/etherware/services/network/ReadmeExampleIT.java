@@ -16,7 +16,7 @@ import org.junit.jupiter.api.Test;
  * The README's two-node example (notes/readme-network.md), verbatim between the markers, so that
  * it always compiles and runs. Keep the README in step with this body.
  */
-class ReadmeExampleTest {
+class ReadmeExampleIT {
 
     @Test
     void shouldRunTheTwoNodeReadmeExample() throws Exception {

@@ -14,7 +14,7 @@ import java.util.concurrent.CountDownLatch;
 import org.junit.jupiter.api.Test;
 
 /** Who is connected to whom, and which node a profile routes to. */
-class NetworkTopologyTest {
+class NetworkTopologyIT {
 
     private static final Profile DUP = Profile.of("dup");
 

@@ -28,7 +28,7 @@ import org.junit.jupiter.api.io.TempDir;
  * jars signed by jarsigner. Every refused jar carries a static initializer that records that it
  * ran, so each refusal also shows that none of the jar's code ran.
  */
-class UpgradeSignatureTest {
+class UpgradeSignatureIT {
 
     private static final String CLASS = "signed.CounterV2";
     private static final String CLASS_FILE = "signed/CounterV2.class";
@@ -62,7 +62,7 @@ class UpgradeSignatureTest {
     private EtherwareNode node(String nodeId, String journal, UnaryOperator<ManagementConfig.Builder> trust) {
         var node = EtherwareNode.builder().nodeId(nodeId).scheduler(FifoScheduler::new).build();
         ManagementService.install(node, trust.apply(ManagementConfig.builder().allowDirectory(allowed)).build());
-        node.add(UpgradeTest.COUNTER, () -> new SequenceCounter(journal));
+        node.add(UpgradeIT.COUNTER, () -> new SequenceCounter(journal));
         return node.start();
     }
 
@@ -73,14 +73,14 @@ class UpgradeSignatureTest {
     /** Asks for the upgrade, expects UNTRUSTED_CODE, and checks that V1 serves on and no jar code ran. */
     private static ManagementFailure assertRefused(EtherwareNode node, Journal journal, Path jar, String marker)
             throws Exception {
-        var failure = assertInstanceOf(ManagementException.class, UpgradeTest.assertFailed(Management.upgrade(node,
-                node.nodeId(), UpgradeTest.COUNTER, Implementation.fromJar(jar, CLASS).withConfiguration(marker))))
+        var failure = assertInstanceOf(ManagementException.class, UpgradeIT.assertFailed(Management.upgrade(node,
+                node.nodeId(), UpgradeIT.COUNTER, Implementation.fromJar(jar, CLASS).withConfiguration(marker))))
                 .failure();
         assertEquals(ManagementFailure.Reason.UNTRUSTED_CODE, failure.reason(), failure.error());
         assertTrue(failure.error().contains(jar.toRealPath().toString()), "names the jar: " + failure.error());
         assertNull(System.getProperty(marker), "no code of the refused jar ran");
-        assertEquals(SequenceCounter.class, node.shell(UpgradeTest.COUNTER).logicType(), "V1 serves on");
-        UpgradeTest.sendAndAwait(node, journal, 0, 1);
+        assertEquals(SequenceCounter.class, node.shell(UpgradeIT.COUNTER).logicType(), "V1 serves on");
+        UpgradeIT.sendAndAwait(node, journal, 0, 1);
         return failure;
     }
 
@@ -91,16 +91,16 @@ class UpgradeSignatureTest {
         Journal journal = Journal.create("signature-good");
         try (var node = node("signed-good", "signature-good", config -> config.trustStore(trustStore,
                 JarBuilder.PASSWORD.toCharArray()))) {
-            UpgradeTest.sendAndAwait(node, journal, 0, 2);
-            UpgradeResult result = Management.upgrade(node, node.nodeId(), UpgradeTest.COUNTER,
+            UpgradeIT.sendAndAwait(node, journal, 0, 2);
+            UpgradeResult result = Management.upgrade(node, node.nodeId(), UpgradeIT.COUNTER,
                     Implementation.fromJar(jar, CLASS).withConfiguration("signature-good")).get(30, TimeUnit.SECONDS);
-            UpgradeTest.sendAndAwait(node, journal, 2, 4);
+            UpgradeIT.sendAndAwait(node, journal, 2, 4);
 
             assertEquals(CLASS, result.newImplementation());
             assertEquals(jar.toRealPath().toString(), result.source());
             assertEquals(List.of("v1", "v1", "v2-signed", "v2-signed"),
                     journal.entries().stream().map(Journal.Entry::version).toList());
-            Class<?> running = node.shell(UpgradeTest.COUNTER).logicType();
+            Class<?> running = node.shell(UpgradeIT.COUNTER).logicType();
             assertEquals(CLASS, running.getName());
             var signers = running.getProtectionDomain().getCodeSource().getCodeSigners();
             assertNotNull(signers, "the class was defined from the signed jar");
@@ -114,10 +114,10 @@ class UpgradeSignatureTest {
         Path jar = JarBuilder.sign(jar("issued.jar", "v2-issued", "signature.issued"), team);
         Journal journal = Journal.create("signature-issued");
         try (var node = trustingNode("signed-issued", "signature-issued")) {
-            UpgradeResult result = Management.upgrade(node, node.nodeId(), UpgradeTest.COUNTER,
+            UpgradeResult result = Management.upgrade(node, node.nodeId(), UpgradeIT.COUNTER,
                     Implementation.fromJar(jar, CLASS).withConfiguration("signature-issued")).get(30, TimeUnit.SECONDS);
             assertEquals(CLASS, result.newImplementation());
-            UpgradeTest.sendAndAwait(node, journal, 0, 1);
+            UpgradeIT.sendAndAwait(node, journal, 0, 1);
             assertEquals("v2-issued", journal.entries().getFirst().version());
         }
     }

@@ -31,7 +31,7 @@ import org.junit.jupiter.api.Test;
  * Migration between two nodes on loopback in one JVM: a stateful counter under a steady stream
  * moves with nothing lost, duplicated or reordered; every failure leaves it running at the source.
  */
-class MigrationTest {
+class MigrationIT {
 
     private static final Profile COUNTER = Profile.parse("counter[test=migration]");
     private static final long STREAM_PERIOD_NS = TimeUnit.MICROSECONDS.toNanos(500);

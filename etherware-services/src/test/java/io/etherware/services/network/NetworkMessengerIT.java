@@ -18,7 +18,7 @@ import java.util.concurrent.TimeUnit;
 import org.junit.jupiter.api.Test;
 
 /** Two nodes in one JVM over loopback TCP: requests, replies, announcements, QoS. */
-class NetworkMessengerTest {
+class NetworkMessengerIT {
 
     private static final Profile ECHO = Profile.of("echo", "node", "b");
 

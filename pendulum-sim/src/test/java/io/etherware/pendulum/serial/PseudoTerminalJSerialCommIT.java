@@ -25,7 +25,7 @@ import org.junit.jupiter.api.condition.OS;
  * loaded machine, so the margins are generous.
  */
 @EnabledOnOs(OS.LINUX)
-class PseudoTerminalJSerialCommTest {
+class PseudoTerminalJSerialCommIT {
 
     @Test
     void shouldCarryBytesBothWaysBetweenTheMasterAndJSerialComm() throws IOException {

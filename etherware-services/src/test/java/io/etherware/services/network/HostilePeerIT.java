@@ -42,7 +42,7 @@ import org.junit.jupiter.api.Test;
  * legitimate peer's requests. Each attack is refused and counted; the legitimate peer loses
  * nothing.
  */
-class HostilePeerTest {
+class HostilePeerIT {
 
     private static final Profile SINK = Profile.of("sink");
     private static final Profile SILENT = Profile.of("silent");

@@ -20,7 +20,7 @@ import java.util.concurrent.TimeUnit;
 import org.junit.jupiter.api.Test;
 
 /** What a peer can make a node hold is bounded in bytes, both ways, and nothing honest is lost. */
-class NetworkBoundsTest {
+class NetworkBoundsIT {
 
     private static final Profile SLOW = Profile.of("slow");
     private static final int FRAME = 64 * 1024;

@@ -21,13 +21,13 @@ import org.junit.jupiter.api.Test;
  * component A receives a HIGH message every 15 ms. With the real-time scheduler every HIGH message
  * starts within one period; with the kernel's {@link FifoScheduler} (one dispatcher) they wait
  * behind the LOW job. Both are asserted in the same test, so it fails if either side is wrong.
- * {@link NodePriorityIsolationTest} makes the same claim on a real node.
+ * {@link NodePriorityIsolationIT} makes the same claim on a real node.
  *
  * <p>The LOW job sleeps rather than spins: it occupies its component, not a CPU at real-time
  * priority. CPU saturation comes from ordinary (SCHED_OTHER) threads, one per core, bounded in time.
  * The HIGH messages come from a {@link PeriodicSender}.
  */
-class PriorityIsolationTest {
+class PriorityIsolationIT {
 
     private static final long PERIOD_NS = TimeUnit.MILLISECONDS.toNanos(15);
     private static final long LOW_JOB_MS = 1000;
@@ -88,7 +88,7 @@ class PriorityIsolationTest {
      * 90 % within one period of their release and all within a tenth of the LOW job: the release
      * is stamped by the sender before it builds and submits the job, and on the loaded development
      * VM a real-time thread was now and then (about one saturated run in ten) seen stalled there
-     * for 6-55 ms, outside the scheduler (see {@link NodePriorityIsolationTest}).
+     * for 6-55 ms, outside the scheduler (see {@link NodePriorityIsolationIT}).
      */
     private static void assertStartWithinOnePeriod(String what, List<Long> latenciesNs) {
         assertEquals(HIGH_MESSAGES, latenciesNs.size(), what);

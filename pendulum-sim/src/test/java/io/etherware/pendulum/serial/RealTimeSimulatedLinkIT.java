@@ -17,7 +17,7 @@ import org.junit.jupiter.api.Test;
  * The board in real time behind a real-time simulated cable at 115200 baud: the setup a node
  * without hardware uses. Real time on a loaded machine: generous margins.
  */
-class RealTimeSimulatedLinkTest {
+class RealTimeSimulatedLinkIT {
 
     @Test
     void shouldBalanceThePendulumOverTheSimulatedLinkInRealTime() throws Exception {

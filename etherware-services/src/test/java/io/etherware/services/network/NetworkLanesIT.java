@@ -27,7 +27,7 @@ import org.junit.jupiter.api.Test;
  * sockets full of LOW bytes); with one lane the same request waits behind the LOW bytes. Ordinary
  * threads: the claim is about connections, not OS priorities.
  */
-class NetworkLanesTest {
+class NetworkLanesIT {
 
     private static final Profile ECHO = Profile.of("echo");
     private static final Profile SLOW = Profile.of("slow-sink");

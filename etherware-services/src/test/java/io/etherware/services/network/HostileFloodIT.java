@@ -28,7 +28,7 @@ import org.junit.jupiter.api.Test;
  * {@code echo} component of node {@code target} every 10 ms and loses nothing; the target's heap
  * stays bounded.
  */
-class HostileFloodTest {
+class HostileFloodIT {
 
     private static final long MiB = 1 << 20;
 

@@ -24,7 +24,7 @@ import org.junit.jupiter.api.Test;
  * The bad-frame corpus against node b, each from a raw socket, while a legitimate node c stays
  * connected to b: each closes only the offending connection, with a logged, counted reason.
  */
-class NetworkBadInputTest {
+class NetworkBadInputIT {
 
     private static final Profile ECHO = Profile.of("echo");
     private static final Profile SINK = Profile.of("sink");

@@ -11,7 +11,7 @@ import java.time.Duration;
 import org.junit.jupiter.api.Test;
 
 /** The README's mutual-TLS example, verbatim between the markers, run with keys made as it says. */
-class ReadmeTlsExampleTest {
+class ReadmeTlsExampleIT {
 
     @Test
     void shouldRunTheReadmeTlsExample() throws Exception {

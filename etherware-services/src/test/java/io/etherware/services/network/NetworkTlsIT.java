@@ -19,7 +19,7 @@ import org.junit.jupiter.api.BeforeAll;
 import org.junit.jupiter.api.Test;
 
 /** Mutual TLS between nodes: who a peer is comes from its certificate, and nothing else. */
-class NetworkTlsTest {
+class NetworkTlsIT {
 
     private static final Profile WHO = Profile.of("who-sent-this");
     private static TestPki deployment;

@@ -22,10 +22,10 @@ import org.junit.jupiter.api.Timeout;
  * returns is one {@link FrameWriter} writes back to the same frame.
  *
  * <p>A Jazzer {@link FuzzTest}: in a normal build it only replays the seed corpus in
- * {@code src/test/resources/io/etherware/services/network/internal/FrameReaderFuzzTestInputs/};
+ * {@code src/test/resources/io/etherware/services/network/internal/FrameReaderFuzzITInputs/};
  * to fuzz, see "Fuzzing" in the README.
  */
-class FrameReaderFuzzTest {
+class FrameReaderFuzzIT {
 
     /** Fuzz inputs beyond this are skipped. */
     private static final int MAX_INPUT_BYTES = 64 * 1024;

@@ -29,7 +29,7 @@ import org.junit.jupiter.api.Test;
  * legitimate peer comes back, loses at most what was in flight when it was attacked, and no
  * request of it hangs.
  */
-class HostileStreamTest {
+class HostileStreamIT {
 
     private TestNode target;
     private TestNode legit;

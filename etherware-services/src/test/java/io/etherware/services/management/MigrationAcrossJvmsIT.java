@@ -29,7 +29,7 @@ import org.junit.jupiter.api.io.TempDir;
  * and back with nothing lost, duplicated or reordered; when the target JVM is killed in the
  * middle of a migration, the counter resumes at the source with nothing lost.
  */
-class MigrationAcrossJvmsTest {
+class MigrationAcrossJvmsIT {
 
     private static final Profile COUNTER = Profile.parse("counter[test=jvm-migration]");
     private static final long STREAM_PERIOD_NS = TimeUnit.MICROSECONDS.toNanos(500);

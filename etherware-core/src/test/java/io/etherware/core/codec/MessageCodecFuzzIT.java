@@ -23,10 +23,10 @@ import static org.junit.jupiter.api.Assertions.fail;
  *
  * <p>Two drivers: seeded random mutations of valid documents (a plain test, not coverage-guided),
  * and a Jazzer {@link FuzzTest}. In a normal build Jazzer only replays the seed corpus in
- * {@code src/test/resources/io/etherware/core/codec/MessageCodecFuzzTestInputs/}; to fuzz, see
+ * {@code src/test/resources/io/etherware/core/codec/MessageCodecFuzzITInputs/}; to fuzz, see
  * "Fuzzing" in the README.
  */
-class MessageCodecFuzzTest {
+class MessageCodecFuzzIT {
 
     private static final long SEED = 0xF022L;
     private static final int MUTATIONS = 5_000;
