@@ -15,7 +15,7 @@ import org.junit.jupiter.api.Test;
  * The README's Java examples are the code that runs them: every {@code java} block of the README
  * appears, line for line and in order, between a {@code // README example begins} and {@code ends}
  * marker in a test, or in the complete program ({@code examples/.../quickstart/QuickStart.java},
- * run by {@code QuickStartTest}); a marked region may add only assertions, so neither can change
+ * run by {@code QuickStartIT}); a marked region may add only assertions, so neither can change
  * without the other.
  */
 class ReadmeExamplesTest {

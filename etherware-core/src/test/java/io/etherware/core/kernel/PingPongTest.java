@@ -1,13 +1,14 @@
 package io.etherware.core.kernel;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
-import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.etherware.core.component.Component;
 import io.etherware.core.component.ComponentContext;
+import io.etherware.core.component.Shell;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
 import io.etherware.core.testing.Await;
+import io.etherware.core.testing.ManualClock;
 import io.etherware.core.testing.Num;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.TimeUnit;
@@ -73,9 +74,15 @@ class PingPongTest {
     void shouldDeliverABurstInSendOrderWhenOneComponentFloodsAnother() throws Exception {
         var received = new AtomicLong();
         var outOfOrder = new AtomicLong();
-        try (var node = EtherwareNode.builder().nodeId("burst").build()) {
-            node.add(PONG, () -> (message, context) -> {
-                if (message.contentsAs(Num.class).value() != received.getAndIncrement()) {
+        // Only PONG's handling moves the node's clock, by 7 + value ns: the shell must report
+        // exactly 7 + (ROUNDS - 1) ns for its last handling (not the first's 7, not a wall time).
+        var clock = new ManualClock();
+        Shell pong;
+        try (var node = EtherwareNode.builder().nodeId("burst").clock(clock).build()) {
+            pong = node.add(PONG, () -> (message, context) -> {
+                long value = message.contentsAs(Num.class).value();
+                clock.advance(7 + value);
+                if (value != received.getAndIncrement()) {
                     outOfOrder.incrementAndGet();
                 }
             });
@@ -94,7 +101,10 @@ class PingPongTest {
             node.start();
             Await.until("all burst messages", () -> received.get() == ROUNDS);
             assertEquals(0, outOfOrder.get());
-            assertTrue(node.shell(PONG).lastHandlingNs() >= 0);
         }
+        // Read after close, when the dispatcher has ended: the last handling's duration is recorded
+        // after the handler returns.
+        assertEquals(ROUNDS, pong.handledCount());
+        assertEquals(7 + (ROUNDS - 1), pong.lastHandlingNs(), "the last handling's duration on the node's clock");
     }
 }

@@ -144,7 +144,7 @@ class SupervisionTest {
             node.start();
             long[] failureTimesNs = {0, secondNs, 20 * secondNs, 20 * secondNs + secondNs / 2};
             for (int i = 0; i < failureTimesNs.length; i++) {
-                clock.setNs(failureTimesNs[i]);
+                clock.set(failureTimesNs[i]);
                 node.send(FRAGILE, new Num(3));
                 awaitProcessed(fragile, i + 1);
             }
@@ -152,7 +152,7 @@ class SupervisionTest {
             assertEquals(4, fragile.restartCount());
             assertEquals(0, node.stats().escalations());
 
-            clock.setNs(21 * secondNs); // the last two restarts were 1 s ago: a third is too many
+            clock.set(21 * secondNs); // the last two restarts were 1 s ago: a third is too many
             node.send(FRAGILE, new Num(3));
             Await.until("the escalation", () -> node.stats().escalations() == 1);
             assertEquals(4, fragile.restartCount());

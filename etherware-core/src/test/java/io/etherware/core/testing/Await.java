@@ -2,7 +2,11 @@ package io.etherware.core.testing;
 
 import java.util.function.BooleanSupplier;
 
-/** Waits for a condition with a generous deadline: the box is shared with other builds. */
+/**
+ * Waits for a condition with a generous deadline: the box is shared with other builds. The same as
+ * etherware-testkit's {@code io.etherware.testkit.Await}, which this module's tests cannot use: the
+ * test kit depends on this module.
+ */
 public final class Await {
 
     public static final long DEADLINE_MS = 30_000;

@@ -14,6 +14,7 @@ import io.etherware.rt.platform.OsThreadStat;
 import io.etherware.rt.platform.Platform;
 import io.etherware.rt.platform.ThreadGrant;
 import io.etherware.rt.platform.ThreadPolicy;
+import io.etherware.testkit.ManualClock;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.ArrayList;
@@ -39,6 +40,8 @@ import org.junit.jupiter.api.io.TempDir;
 class RealtimeSchedulerTest {
 
     private static final long MS = 1_000_000L;
+    /** Where the manual clocks start: an arbitrary origin, as System.nanoTime's is. */
+    private static final long CLOCK_START_NS = 1_000 * MS;
     private RealtimeScheduler scheduler;
 
     @AfterEach
@@ -147,7 +150,7 @@ class RealtimeSchedulerTest {
 
     @Test
     void shouldKeepThePlacementWhenAParkedJobIsSubmittedAgain() throws Exception {
-        var clock = new ManualClock();
+        var clock = new ManualClock(CLOCK_START_NS);
         var ran = new LinkedBlockingQueue<Job>();
         var parkedOnce = ConcurrentHashMap.<Long>newKeySet();
         start(RealtimeSchedulerConfig.builder().threadSchedulingRule(ThreadSchedulingRule.tableII().withoutRealtime())
@@ -177,7 +180,7 @@ class RealtimeSchedulerTest {
 
     @Test
     void shouldCountExactlyOneDeadlineMissWhenOneJobOverruns() throws Exception {
-        var clock = new ManualClock();
+        var clock = new ManualClock(CLOCK_START_NS);
         var misses = new CopyOnWriteArrayList<DeadlineMiss>();
         var done = new LinkedBlockingQueue<Job>();
         Map<String, Long> executionNs = Map.of("late", 6 * MS, "just-in-time", 5 * MS, "no-deadline", 100 * MS);
@@ -371,7 +374,7 @@ class RealtimeSchedulerTest {
 
     @Test
     void shouldWriteDispatchAndDeadlineMissEventsWhenFlightRecorderIsOn(@TempDir Path dir) throws Exception {
-        var clock = new ManualClock();
+        var clock = new ManualClock(CLOCK_START_NS);
         var done = new LinkedBlockingQueue<Job>();
         start(oneDispatcher(new FifoPlacement()).build(), (job, nowNs) -> {
             clock.advance(job.targetName().equals("late") ? 10 * MS : 0);

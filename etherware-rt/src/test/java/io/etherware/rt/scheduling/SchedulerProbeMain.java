@@ -12,7 +12,7 @@ import java.util.concurrent.TimeUnit;
 import java.util.concurrent.TimeoutException;
 
 /**
- * A child JVM for {@link PlatformRefusalChildJvmTest}: starts a node with the default real-time
+ * A child JVM for {@link PlatformRefusalChildJvmIT}: starts a node with the default real-time
  * scheduler (optionally locking memory), sends one HIGH message, prints which thread handled it,
  * the platform report and the locked memory, and exits. Output lines are prefixed so the parent
  * can pick them out; the node's own log goes to stderr.

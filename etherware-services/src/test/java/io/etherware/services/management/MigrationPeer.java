@@ -4,7 +4,7 @@ import java.net.InetSocketAddress;
 import java.time.Duration;
 
 /**
- * The other JVM of {@link MigrationAcrossJvmsTest}: a node that dials the test's node and can
+ * The other JVM of {@link MigrationAcrossJvmsIT}: a node that dials the test's node and can
  * receive (and send back) migrated components. Prints {@code READY} once connected and runs
  * until its standard input closes.
  *

@@ -10,6 +10,7 @@ import io.etherware.core.message.Criticality;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
 import io.etherware.core.message.QoS;
+import io.etherware.testkit.Await;
 import java.util.ArrayList;
 import java.util.Comparator;
 import java.util.List;

@@ -6,6 +6,7 @@ import io.etherware.core.message.Criticality;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
 import io.etherware.core.message.QoS;
+import io.etherware.testkit.Await;
 import java.util.ArrayList;
 import java.util.EnumMap;
 import java.util.List;

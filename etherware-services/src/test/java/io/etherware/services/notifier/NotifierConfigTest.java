@@ -10,6 +10,7 @@ import io.etherware.core.message.QoS;
 import io.etherware.rt.platform.ThreadPolicy;
 import io.etherware.rt.scheduling.DispatcherSpec;
 import io.etherware.rt.scheduling.ThreadSchedulingRule;
+import io.etherware.testkit.ManualClock;
 import org.junit.jupiter.api.Test;
 
 /** Configuration and subscription values: defaults, derivation, and errors that name the field. */

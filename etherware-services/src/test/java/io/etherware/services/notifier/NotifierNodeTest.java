@@ -17,6 +17,7 @@ import io.etherware.core.message.QoS;
 import io.etherware.core.message.Tick;
 import io.etherware.rt.platform.ThreadGrant;
 import io.etherware.rt.platform.ThreadPolicy;
+import io.etherware.testkit.Await;
 import java.util.List;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.CopyOnWriteArrayList;
@@ -55,7 +56,7 @@ class NotifierNodeTest {
             assertTrue(answer.accepted(), answer.toString());
             assertEquals(CONTROLLER.toString(), answer.name(), "named after the subscriber");
             long t0Ns = answer.firstReleaseNs();
-            Await.until(() -> receiver.ticks.size() >= 20, WAIT_MS, () -> receiver.ticks.size() + " Ticks");
+            Await.until(() -> receiver.ticks.size() + " Ticks", WAIT_MS, () -> receiver.ticks.size() >= 20);
 
             long previousSequence = -1;
             for (Received received : List.copyOf(receiver.ticks)) {
@@ -84,7 +85,7 @@ class NotifierNodeTest {
             node.add(CONTROLLER, () -> receiver);
             node.start();
             notifier.subscribe(Subscription.periodic("loop", CONTROLLER, Criticality.HIGH, PERIOD_NS));
-            Await.until(() -> receiver.ticks.size() >= 12, WAIT_MS, () -> receiver.ticks.size() + " Ticks");
+            Await.until(() -> receiver.ticks.size() + " Ticks", WAIT_MS, () -> receiver.ticks.size() >= 12);
 
             long stallEndNs = receiver.stallEndNs;
             List<Received> afterStall = receiver.ticks.subList(4, receiver.ticks.size());
@@ -95,8 +96,8 @@ class NotifierNodeTest {
             assertTrue(stats.skippedBusy() + stats.skippedLate() >= 10,
                     "the releases during a 200 ms stall at 10 ms are skipped and counted: " + stats);
             assertTrue(stats.skippedBusy() > 0, "skipped for the busy receiver: " + stats);
-            Await.until(() -> receiver.ticks.size() == stats.ticksSent(), WAIT_MS,
-                    () -> "every Tick sent to be received: " + receiver.ticks.size() + " of " + stats.ticksSent());
+            Await.until(() -> "every Tick sent to be received: " + receiver.ticks.size() + " of " + stats.ticksSent(),
+                    WAIT_MS, () -> receiver.ticks.size() == stats.ticksSent());
             assertAccountsForEveryRelease(stats);
         }
     }
@@ -112,7 +113,7 @@ class NotifierNodeTest {
             node.start();
             notifier.subscribe(Subscription.periodic("loop", CONTROLLER, Criticality.HIGH, PERIOD_NS)
                     .withBackPressure(false));
-            Await.until(() -> receiver.ticks.size() >= 25, WAIT_MS, () -> receiver.ticks.size() + " Ticks");
+            Await.until(() -> receiver.ticks.size() + " Ticks", WAIT_MS, () -> receiver.ticks.size() >= 25);
 
             long stallEndNs = receiver.stallEndNs;
             long queuedDuringStall = receiver.ticks.stream()
@@ -137,9 +138,9 @@ class NotifierNodeTest {
 
             Subscription added = notifier.subscribe(
                     Subscription.periodic("loop", CONTROLLER, Criticality.HIGH, PERIOD_NS));
-            Await.until(() -> first.ticks.size() >= 5, WAIT_MS, () -> first.ticks.size() + " Ticks at the first");
+            Await.until(() -> first.ticks.size() + " Ticks at the first", WAIT_MS, () -> first.ticks.size() >= 5);
             notifier.retarget("loop", standby);
-            Await.until(() -> second.ticks.size() >= 5, WAIT_MS, () -> second.ticks.size() + " Ticks at the second");
+            Await.until(() -> second.ticks.size() + " Ticks at the second", WAIT_MS, () -> second.ticks.size() >= 5);
             long lastAtFirst = first.ticks.getLast().tick().sequence();
             Tick firstAtSecond = second.ticks.getFirst().tick();
             assertTrue(firstAtSecond.sequence() > lastAtFirst, "every Tick after the switch goes to the new target,"
@@ -149,9 +150,9 @@ class NotifierNodeTest {
                     "on the same grid");
 
             SubscriptionStats last = notifier.unsubscribe("loop").orElseThrow();
-            Await.until(() -> first.ticks.size() + second.ticks.size() == last.ticksSent(), WAIT_MS,
-                    () -> "every Tick sent to arrive: " + (first.ticks.size() + second.ticks.size()) + " of "
-                            + last.ticksSent());
+            Await.until(() -> "every Tick sent to arrive: " + (first.ticks.size() + second.ticks.size()) + " of "
+                            + last.ticksSent(), WAIT_MS,
+                    () -> first.ticks.size() + second.ticks.size() == last.ticksSent());
             Thread.sleep(5 * PERIOD_NS / 1_000_000);
             assertEquals(last.ticksSent(), first.ticks.size() + second.ticks.size(), "no Tick after unsubscribe");
             assertEquals(standby, last.subscription().target());
@@ -173,9 +174,9 @@ class NotifierNodeTest {
 
             assertTrue(ask(node, TickSubscribe.periodic(Criticality.MIDDLE, PERIOD_NS).named("loop").to(CONTROLLER))
                     .accepted());
-            Await.until(() -> first.ticks.size() >= 3, WAIT_MS, () -> first.ticks.size() + " Ticks at the first");
+            Await.until(() -> first.ticks.size() + " Ticks at the first", WAIT_MS, () -> first.ticks.size() >= 3);
             assertTrue(ask(node, new TickRetarget("loop", standby)).accepted());
-            Await.until(() -> second.ticks.size() >= 3, WAIT_MS, () -> second.ticks.size() + " Ticks at the second");
+            Await.until(() -> second.ticks.size() + " Ticks at the second", WAIT_MS, () -> second.ticks.size() >= 3);
             assertEquals(Criticality.MIDDLE, second.ticks.getFirst().message().qos().criticality());
             assertTrue(ask(node, new TickUnsubscribe("loop")).accepted());
             assertTrue(notifier.subscriptions().isEmpty());
@@ -195,7 +196,7 @@ class NotifierNodeTest {
                     .to(CONTROLLER));
             assertTrue(reply.accepted(), reply.toString());
             assertEquals(releaseNs, reply.firstReleaseNs());
-            Await.until(() -> receiver.ticks.size() == 1, WAIT_MS, () -> "the one-shot Tick");
+            Await.until(() -> "the one-shot Tick", WAIT_MS, () -> receiver.ticks.size() == 1);
             Thread.sleep(50);
 
             assertEquals(1, receiver.ticks.size());
@@ -264,7 +265,7 @@ class NotifierNodeTest {
             ThreadGrant grant = notifier.threadGrant().orElseThrow();
             assertEquals("cpu affinity", grant.refusals().getFirst().feature(), grant.toLine());
             notifier.subscribe(Subscription.periodic("loop", CONTROLLER, Criticality.HIGH, PERIOD_NS));
-            Await.until(() -> kernel.sentCount() >= 3, WAIT_MS, () -> kernel.sentCount() + " Ticks sent");
+            Await.until(() -> kernel.sentCount() + " Ticks sent", WAIT_MS, () -> kernel.sentCount() >= 3);
         }
     }
 
@@ -276,7 +277,7 @@ class NotifierNodeTest {
             node.start();
             assertTrue(notifier.isRunning());
         }
-        Await.until(() -> !notifier.isRunning(), WAIT_MS, () -> "the Notifier to close with its node");
+        Await.until(() -> "the Notifier to close with its node", WAIT_MS, () -> !notifier.isRunning());
     }
 
     @Test

@@ -9,6 +9,7 @@ import io.etherware.core.message.Criticality;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
 import io.etherware.core.message.Tick;
+import io.etherware.testkit.Await;
 import java.util.List;
 import java.util.concurrent.LinkedBlockingQueue;
 import org.junit.jupiter.api.Test;
@@ -42,7 +43,7 @@ class NotifierReadmeExampleTest {
             });
             // README example ends
             node.start();
-            Await.until(() -> ticks.size() >= 4, 20_000, () -> ticks.size() + " Ticks");
+            Await.until(() -> ticks.size() + " Ticks", 20_000, () -> ticks.size() >= 4);
             received = List.copyOf(ticks);
         }
         Tick first = received.getFirst();

@@ -9,6 +9,8 @@ import io.etherware.core.message.Profile;
 import io.etherware.core.message.QoS;
 import io.etherware.core.message.Tick;
 import io.etherware.rt.platform.ThreadPolicy;
+import io.etherware.testkit.Await;
+import io.etherware.testkit.ManualClock;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Random;
@@ -36,7 +38,7 @@ class NotifierReleaseTest {
         try (var notifier = new Notifier(kernel, CONFIG, clock, sleeper)) {
             notifier.subscribe(Subscription.periodic("loop", RECEIVER, Criticality.HIGH, PERIOD_NS).startingAt(T0_NS));
             notifier.start();
-            Await.until(() -> kernel.sentCount() >= count, 30_000, () -> kernel.sentCount() + " Ticks sent");
+            Await.until(() -> kernel.sentCount() + " Ticks sent", 30_000, () -> kernel.sentCount() >= count);
 
             List<Tick> ticks = kernel.ticks();
             assertEquals(count, ticks.size());
@@ -63,7 +65,7 @@ class NotifierReleaseTest {
         try (var notifier = new Notifier(kernel, CONFIG, clock, sleeper)) {
             notifier.subscribe(Subscription.periodic("loop", RECEIVER, Criticality.HIGH, PERIOD_NS).startingAt(T0_NS));
             notifier.start();
-            Await.until(() -> kernel.sentCount() >= count, 30_000, () -> kernel.sentCount() + " Ticks sent");
+            Await.until(() -> kernel.sentCount() + " Ticks sent", 30_000, () -> kernel.sentCount() >= count);
 
             List<Tick> ticks = kernel.ticks();
             List<Long> sentAtNs = kernel.sentAtNs();
@@ -91,8 +93,8 @@ class NotifierReleaseTest {
         try (var notifier = new Notifier(kernel, CONFIG, clock, sleeper)) {
             notifier.subscribe(Subscription.periodic("loop", RECEIVER, Criticality.HIGH, PERIOD_NS).startingAt(T0_NS));
             notifier.start();
-            Await.until(() -> notifier.stats("loop").orElseThrow().nextSequence() == 200, 30_000,
-                    () -> notifier.stats("loop").orElseThrow().toString());
+            Await.until(() -> notifier.stats("loop").orElseThrow().toString(), 30_000,
+                    () -> notifier.stats("loop").orElseThrow().nextSequence() == 200);
 
             List<Long> sequences = kernel.ticks().stream().map(Tick::sequence).toList();
             var expected = new ArrayList<Long>();
@@ -122,8 +124,8 @@ class NotifierReleaseTest {
         try (var notifier = new Notifier(kernel, CONFIG, clock, sleeper)) {
             notifier.subscribe(Subscription.periodic("loop", RECEIVER, Criticality.HIGH, PERIOD_NS).startingAt(T0_NS));
             notifier.start();
-            Await.until(() -> notifier.stats("loop").orElseThrow().nextSequence() == 200, 30_000,
-                    () -> notifier.stats("loop").orElseThrow().toString());
+            Await.until(() -> notifier.stats("loop").orElseThrow().toString(), 30_000,
+                    () -> notifier.stats("loop").orElseThrow().nextSequence() == 200);
 
             List<Long> sequences = kernel.ticks().stream().map(Tick::sequence).toList();
             assertEquals(99L, sequences.get(99));
@@ -145,8 +147,8 @@ class NotifierReleaseTest {
             notifier.subscribe(Subscription.periodic("loop", RECEIVER, Criticality.HIGH, PERIOD_NS).startingAt(T0_NS)
                     .withMaxLatenessNs(PERIOD_NS));
             notifier.start();
-            Await.until(() -> notifier.stats("loop").orElseThrow().nextSequence() == 200, 30_000,
-                    () -> notifier.stats("loop").orElseThrow().toString());
+            Await.until(() -> notifier.stats("loop").orElseThrow().toString(), 30_000,
+                    () -> notifier.stats("loop").orElseThrow().nextSequence() == 200);
 
             List<Tick> ticks = kernel.ticks();
             assertEquals(105L, ticks.get(100).sequence(), "only the releases before the latest due one are skipped");
@@ -168,7 +170,7 @@ class NotifierReleaseTest {
                     .startingAt(T0_NS));
             notifier.subscribe(Subscription.periodic("slow", other, Criticality.LOW, 3 * PERIOD_NS).startingAt(T0_NS));
             notifier.start();
-            Await.until(() -> kernel.sentCount() >= 16 + 11, 30_000, () -> kernel.sentCount() + " Ticks sent");
+            Await.until(() -> kernel.sentCount() + " Ticks sent", 30_000, () -> kernel.sentCount() >= 16 + 11);
 
             List<Message> sent = kernel.sent();
             long previousReleaseNs = Long.MIN_VALUE;
@@ -197,7 +199,7 @@ class NotifierReleaseTest {
             notifier.subscribe(Subscription.periodic("explicit", RECEIVER, Criticality.MIDDLE, 15 * PERIOD_NS)
                     .startingAt(T0_NS).withDeadlineNs(4 * PERIOD_NS).withWcetNs(PERIOD_NS));
             notifier.start();
-            Await.until(() -> kernel.sentCount() >= 10, 30_000, () -> kernel.sentCount() + " Ticks sent");
+            Await.until(() -> kernel.sentCount() + " Ticks sent", 30_000, () -> kernel.sentCount() >= 10);
 
             for (Message message : kernel.sent()) {
                 assertEquals(notifier.profile(), message.sender());
@@ -223,14 +225,14 @@ class NotifierReleaseTest {
                     Subscription.oneShot("wake-up", RECEIVER, Criticality.MIDDLE, T0_NS + 7 * PERIOD_NS));
             assertTrue(added.isOneShot());
             notifier.start();
-            Await.until(() -> notifier.stats("wake-up").isEmpty(), 30_000, () -> "the one-shot to leave");
+            Await.until(() -> "the one-shot to leave", 30_000, () -> notifier.stats("wake-up").isEmpty());
 
             assertEquals(List.of(new Tick(T0_NS + 7 * PERIOD_NS, 0, 0)), kernel.ticks());
             assertEquals(QoS.of(Criticality.MIDDLE), kernel.sent().getFirst().qos());
             assertEquals(List.of(), notifier.subscriptions());
             // The name is free again.
             notifier.subscribe(Subscription.oneShot("wake-up", RECEIVER, Criticality.MIDDLE, T0_NS + 9 * PERIOD_NS));
-            Await.until(() -> kernel.sentCount() == 2, 30_000, () -> kernel.sentCount() + " Ticks sent");
+            Await.until(() -> kernel.sentCount() + " Ticks sent", 30_000, () -> kernel.sentCount() == 2);
         }
     }
 
@@ -245,7 +247,7 @@ class NotifierReleaseTest {
             notifier.subscribe(Subscription.periodic("phase", RECEIVER, Criticality.HIGH, PERIOD_NS)
                     .startingAt(T0_NS - 5 * PERIOD_NS / 2));
             notifier.start();
-            Await.until(() -> kernel.sentCount() >= 10, 30_000, () -> kernel.sentCount() + " Ticks sent");
+            Await.until(() -> kernel.sentCount() + " Ticks sent", 30_000, () -> kernel.sentCount() >= 10);
 
             Tick first = kernel.ticks().getFirst();
             assertEquals(new Tick(T0_NS + PERIOD_NS / 2, 3, PERIOD_NS), first);

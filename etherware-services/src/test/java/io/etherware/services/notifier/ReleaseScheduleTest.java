@@ -10,6 +10,7 @@ import io.etherware.core.message.Profile;
 import io.etherware.core.message.Tick;
 import io.etherware.services.notifier.internal.ReleaseSchedule;
 import io.etherware.services.notifier.internal.SubscriptionState;
+import io.etherware.testkit.ManualClock;
 import java.util.ArrayList;
 import java.util.List;
 import org.junit.jupiter.api.Test;

@@ -1,6 +1,7 @@
 package io.etherware.services.notifier;
 
 import io.etherware.services.notifier.internal.Sleeper;
+import io.etherware.testkit.ManualClock;
 import java.util.concurrent.locks.LockSupport;
 import java.util.function.LongUnaryOperator;
 

@@ -30,7 +30,7 @@ import org.slf4j.LoggerFactory;
  * {@code plant} hosts the room (it answers a read with a {@link Reading} and applies each
  * {@link Heat}); node {@code control} runs the real-time scheduler, a Notifier, and the controller,
  * which the Notifier activates every 100 ms with a HIGH Tick. Each README Java block of the quick
- * start is an excerpt of this file ({@code ReadmeExamplesTest}), and {@code QuickStartTest} runs it.
+ * start is an excerpt of this file ({@code ReadmeExamplesTest}), and {@code QuickStartIT} runs it.
  *
  * <p>Run it: {@code java --enable-native-access=ALL-UNNAMED -cp examples/target/examples-0.1.0-SNAPSHOT.jar
  * io.etherware.examples.quickstart.QuickStart 5} (seconds; default 3).

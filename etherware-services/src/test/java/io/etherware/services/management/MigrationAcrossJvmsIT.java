@@ -1,0 +1,149 @@
+package io.etherware.services.management;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertInstanceOf;
+import static org.junit.jupiter.api.Assertions.assertThrows;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import example.counter.ReportingCounter;
+import io.etherware.core.kernel.Endpoint;
+import io.etherware.core.message.Profile;
+import io.etherware.testkit.Await;
+import java.io.BufferedReader;
+import java.io.IOException;
+import java.io.InputStreamReader;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.List;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.ExecutionException;
+import java.util.concurrent.TimeUnit;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+/**
+ * Migration between two JVMs on loopback: the second JVM ({@link MigrationPeer}) runs on the same
+ * class path. A stateful counter under a steady stream of sequence-numbered messages moves there
+ * and back with nothing lost, duplicated or reordered; when the target JVM is killed in the
+ * middle of a migration, the counter resumes at the source with nothing lost.
+ */
+class MigrationAcrossJvmsIT {
+
+    private static final Profile COUNTER = Profile.parse("counter[test=jvm-migration]");
+    private static final long STREAM_PERIOD_NS = TimeUnit.MICROSECONDS.toNanos(500);
+    private static final Duration STEP_TIMEOUT = Duration.ofSeconds(2);
+
+    @TempDir
+    Path logs;
+
+    /** The other JVM, connected to {@code a} once this returns. */
+    private Process startPeer(MigrationNode a, String nodeId) throws IOException, InterruptedException {
+        String classPath = System.getProperty("surefire.test.class.path", System.getProperty("java.class.path"));
+        var command = List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                "--enable-native-access=ALL-UNNAMED", "-cp", classPath, MigrationPeer.class.getName(), nodeId,
+                "127.0.0.1", String.valueOf(a.address().getPort()), String.valueOf(STEP_TIMEOUT.toMillis()),
+                a.node.nodeId());
+        Path err = logs.resolve(nodeId + ".err");
+        Process process = new ProcessBuilder(command).redirectError(err.toFile()).start();
+        var ready = CompletableFuture.supplyAsync(() -> {
+            try (var out = new BufferedReader(new InputStreamReader(process.getInputStream(), StandardCharsets.UTF_8))) {
+                return "READY".equals(out.readLine());
+            } catch (IOException e) {
+                return false;
+            }
+        });
+        try {
+            if (!ready.get(60, TimeUnit.SECONDS)) {
+                throw new AssertionError("the peer JVM did not start: " + Files.readString(err));
+            }
+        } catch (ExecutionException | java.util.concurrent.TimeoutException e) {
+            process.destroyForcibly();
+            throw new AssertionError("the peer JVM did not start: " + Files.readString(err), e);
+        }
+        a.awaitManagementOf(nodeId);
+        return process;
+    }
+
+    /** This JVM's node, with the counter; it accepts the steps of a migration back from the peer. */
+    private static MigrationNode sourceWithCounter() {
+        var a = MigrationNode.start("jvm-a", MigrationNode.config().migrationStepTimeout(STEP_TIMEOUT)
+                .handoverWait(STEP_TIMEOUT.multipliedBy(2)).build());
+        a.node.add(COUNTER, ReportingCounter::new);
+        return a;
+    }
+
+    private static void stop(Process process) throws InterruptedException {
+        try {
+            process.getOutputStream().close();
+        } catch (IOException e) {
+            // already gone
+        }
+        if (!process.waitFor(30, TimeUnit.SECONDS)) {
+            process.destroyForcibly();
+        }
+    }
+
+    @Test
+    void shouldMoveAStatefulComponentToAnotherJvmAndBackWithNothingLostUnderAStream() throws Exception {
+        try (var a = sourceWithCounter()) {
+            Process b = startPeer(a, "jvm-b");
+            try {
+                var stream = new SeqStream(a.node, COUNTER, STREAM_PERIOD_NS);
+                stream.awaitMore(200);
+
+                MigrationResult there = Management.migrate(a.node, "jvm-a", COUNTER, "jvm-b")
+                        .get(60, TimeUnit.SECONDS);
+                assertEquals("jvm-b", there.toNode());
+                assertTrue(there.gapNs() >= 0, "the gap was measured: " + there);
+                assertInstanceOf(Endpoint.Remote.class, a.node.registry().resolve(COUNTER), "A routes it to B");
+                stream.awaitMore(200);
+                Await.until("B handles the stream", () -> stream.handlers().getLast().equals("jvm-b"));
+
+                MigrationResult back = Management.migrate(a.node, "jvm-b", COUNTER, "jvm-a")
+                        .get(60, TimeUnit.SECONDS);
+                assertEquals("jvm-a", back.toNode());
+                assertInstanceOf(Endpoint.Local.class, a.node.registry().resolve(COUNTER), "A hosts it again");
+                stream.awaitMore(200);
+
+                stream.stopAndAssertExactlyOnceInOrder();
+                assertEquals(List.of("jvm-a", "jvm-b", "jvm-a"), stream.handlers(), "handled at A, then B, then A");
+                assertEquals(0, a.node.stats().undeliverable());
+            } finally {
+                stop(b);
+            }
+        }
+    }
+
+    @Test
+    void shouldResumeAtTheSourceWithNothingLostWhenTheTargetJvmIsKilledDuringTheMigration() throws Exception {
+        try (var a = sourceWithCounter()) {
+            Process b = startPeer(a, "jvm-b");
+            try {
+                var stream = new SeqStream(a.node, COUNTER, STREAM_PERIOD_NS);
+                stream.awaitMore(200);
+                // The target's restore takes 1.5 s: the source holds the counter meanwhile.
+                var request = new MigrateRequest(COUNTER, "jvm-b", ReportingCounter.SlowRestore.class.getName(),
+                        null, null);
+                CompletableFuture<MigrationResult> migration = Management.migrate(a.node, "jvm-a", request,
+                        Duration.ofSeconds(60));
+                Thread.sleep(500);
+                b.destroyForcibly();
+                assertTrue(b.waitFor(30, TimeUnit.SECONDS), "the target JVM is gone");
+
+                var error = assertThrows(ExecutionException.class, () -> migration.get(60, TimeUnit.SECONDS));
+                var failure = assertInstanceOf(ManagementException.class, error.getCause()).failure();
+                assertEquals(ManagementFailure.Reason.TARGET_UNREACHABLE, failure.reason(), failure.error());
+                assertTrue(failure.error().contains("resumed at 'jvm-a'"), failure.error());
+                stream.awaitMore(200);
+
+                stream.stopAndAssertExactlyOnceInOrder();
+                assertEquals(List.of("jvm-a"), stream.handlers(), "every message handled at the source");
+                assertInstanceOf(Endpoint.Local.class, a.node.registry().resolve(COUNTER));
+            } finally {
+                b.destroyForcibly();
+            }
+        }
+    }
+}
