@@ -43,6 +43,8 @@ final class LegitLoad implements AutoCloseable {
     private final AtomicLong answered = new AtomicLong();
     private final AtomicLong wrong = new AtomicLong();
     private final ConcurrentLinkedQueue<Failure> failures = new ConcurrentLinkedQueue<>();
+    /** Set and read on the timer thread only. */
+    private boolean paused;
 
     private LegitLoad(EtherwareNode node, Profile to, long timeoutNs) {
         this.node = node;
@@ -57,7 +59,23 @@ final class LegitLoad implements AutoCloseable {
         return load;
     }
 
+    /**
+     * Stops sending until {@link #resume}: when this returns, no request is being sent and none will
+     * be, so {@link #pending()} counts exactly the requests exposed to what happens next.
+     */
+    void pause() throws Exception {
+        timer.submit(() -> paused = true).get(10, TimeUnit.SECONDS);
+    }
+
+    /** Sends again, one request per period. */
+    void resume() throws Exception {
+        timer.submit(() -> paused = false).get(10, TimeUnit.SECONDS);
+    }
+
     private void requestOne() {
+        if (paused) {
+            return;
+        }
         long index = sent.getAndIncrement();
         var request = new Message(to, node.profile(), node.clock().epochNanos(), HIGH, new Num(index),
                 node.newMessageId(), null);

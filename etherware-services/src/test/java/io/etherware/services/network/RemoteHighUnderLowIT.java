@@ -10,6 +10,7 @@ import io.etherware.core.message.Profile;
 import io.etherware.core.message.QoS;
 import io.etherware.core.message.Text;
 import io.etherware.rt.platform.CpuSet;
+import io.etherware.rt.platform.Platform;
 import io.etherware.rt.platform.ThreadGrant;
 import io.etherware.rt.platform.ThreadPolicy;
 import io.etherware.rt.scheduling.CriticalityDeadlinePlacement;
@@ -32,6 +33,10 @@ import org.junit.jupiter.api.Test;
  * above the dispatchers (the node's priority map), so LOW work never holds up the threads that
  * carry the HIGH requests and their replies. LOW work burns at most 1 ms at a time and rests as
  * long (no real-time thread keeps a CPU), bounded to the test's few seconds.
+ *
+ * <p>Node A is real-time too (its network threads above its dispatchers, the requesting thread at
+ * the HIGH priority), as a deployment's nodes are: the round trips then measure B's claim, not how
+ * long A's ordinary threads wait behind whatever else the machine runs.
  */
 class RemoteHighUnderLowIT {
 
@@ -51,7 +56,8 @@ class RemoteHighUnderLowIT {
         var lowHandled = new AtomicInteger();
         try (var b = TestNode.start("b", NodeClock.system(), TestNode.config().threadCpus(CpuSet.of(cpu)), settings -> settings
                      .scheduler(() -> scheduler));
-             var a = TestNode.start("a", TestNode.config().peer(b.address()))) {
+             var a = TestNode.start("a", NodeClock.system(), TestNode.config().peer(b.address()),
+                     settings -> settings.scheduler(RealtimeScheduler::withDefaults))) {
             ThreadGrant high = scheduler.platformReport().threads().get(CriticalityDeadlinePlacement.HIGH_DISPATCHER);
             String refused = "the claim needs SCHED_FIFO: " + high.toLine();
             if ("true".equals(System.getenv("CI"))) {
@@ -62,7 +68,8 @@ class RemoteHighUnderLowIT {
                     "B's lane 0 (HIGH, MIDDLE) threads sit above its HIGH dispatcher");
             assertEquals(ThreadPolicy.fifo(ThreadSchedulingRule.LOW_PRIORITY + 1), b.net.ioThreadPolicy(1),
                     "B's lane 1 (LOW, NONE) threads sit just above its LOW dispatcher, below MIDDLE and HIGH");
-            assertEquals(ThreadPolicy.NON_REALTIME, a.net.ioThreadPolicy(), "A has the original FIFO scheduler");
+            assertEquals(ThreadPolicy.fifo(ThreadSchedulingRule.HIGH_PRIORITY + 1), a.net.ioThreadPolicy(),
+                    "A's lane 0 threads sit above its HIGH dispatcher too");
 
             b.node.add(SENSOR, () -> (message, context) -> context.reply(message, new Text("21.5")));
             b.node.add(BACKGROUND, () -> (message, context) -> {
@@ -81,13 +88,20 @@ class RemoteHighUnderLowIT {
 
             QoS highQos = QoS.of(Criticality.HIGH).withDeadlineNs(DEADLINE_NS);
             List<CompletableFuture<Long>> roundTrips = new ArrayList<>();
-            long nextNs = System.nanoTime();
-            for (int i = 0; i < REQUESTS; i++) {
-                long sentNs = System.nanoTime();
-                roundTrips.add(a.node.request(SENSOR, new Text("read"), highQos, TimeUnit.SECONDS.toNanos(5))
-                        .thenApply(reply -> System.nanoTime() - sentNs));
-                nextNs += PERIOD_NS;
-                LockSupport.parkNanos(nextNs - System.nanoTime());
+            // The requester is A's HIGH loop: it runs at the HIGH dispatcher's priority and only sleeps.
+            Platform.current().configureCurrentThread(ThreadPolicy.fifo(ThreadSchedulingRule.HIGH_PRIORITY),
+                    CpuSet.inherit());
+            try {
+                long nextNs = System.nanoTime();
+                for (int i = 0; i < REQUESTS; i++) {
+                    long sentNs = System.nanoTime();
+                    roundTrips.add(a.node.request(SENSOR, new Text("read"), highQos, TimeUnit.SECONDS.toNanos(5))
+                            .thenApply(reply -> System.nanoTime() - sentNs));
+                    nextNs += PERIOD_NS;
+                    LockSupport.parkNanos(nextNs - System.nanoTime());
+                }
+            } finally {
+                Platform.current().configureCurrentThread(ThreadPolicy.NON_REALTIME, CpuSet.inherit());
             }
             int withinDeadline = 0;
             long worstNs = 0;
