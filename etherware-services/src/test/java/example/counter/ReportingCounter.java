@@ -21,6 +21,11 @@ public class ReportingCounter implements Component {
     protected long count;
     protected long lastSequence = -1;
 
+    /** What the management service calls on a node's registry when it loads this class. */
+    public static void registerContents(ContentsTypes types) {
+        register(types);
+    }
+
     /** Registers {@link Seq}, {@link Counted} and {@link CounterState} in {@code types}. */
     public static void register(ContentsTypes types) {
         types.register("test.seq", Seq.class);

@@ -33,8 +33,9 @@ class ReadmeExamplesTest {
         List<List<String>> unmatched = new ArrayList<>(blocks);
         for (Path test : tests) {
             List<String> file = significant(Files.readAllLines(test));
-            for (List<String> marked : markedRegions(file)) {
-                boolean found = unmatched.removeIf(block -> isSubsequence(block, file) && isSubsequence(marked, block));
+            for (List<String> region : markedRegions(file)) {
+                List<String> marked = region.stream().filter(line -> !line.startsWith("assert")).toList();
+                boolean found = unmatched.removeIf(block -> isSubsequence(block, region) && isSubsequence(marked, block));
                 assertTrue(found, test + ": its README example (" + marked.getFirst() + " ...) is not in the README as it is");
             }
         }
@@ -57,14 +58,14 @@ class ReadmeExamplesTest {
         return blocks;
     }
 
-    /** Each region between a begins and an ends marker, without its assertions. */
+    /** Each region between a begins and an ends marker, with its assertions. */
     private static List<List<String>> markedRegions(List<String> file) {
         List<List<String>> regions = new ArrayList<>();
         int from = file.indexOf(BEGINS);
         while (from >= 0) {
             int to = file.subList(from, file.size()).indexOf(ENDS) + from;
             assertTrue(to > from, "a README example begins without an end");
-            regions.add(file.subList(from + 1, to).stream().filter(line -> !line.startsWith("assert")).toList());
+            regions.add(file.subList(from + 1, to));
             int next = file.subList(to, file.size()).indexOf(BEGINS);
             from = next < 0 ? -1 : next + to;
         }

@@ -87,7 +87,8 @@ public final class ContentsTypes {
     /**
      * Refuses a record the codec, in module {@code io.etherware.core}, could not read by reflection:
      * in a named module, its package must be opened to {@code io.etherware.core}, or the record
-     * (and every class enclosing it) public in an exported package.
+     * (and every class enclosing it) public in a package exported to all. Only the record itself is
+     * checked; a record nested in its components is checked when the codec first meets it.
      */
     private static void requireReadable(Class<?> type) {
         Module module = type.getModule();
@@ -100,11 +101,13 @@ public final class ContentsTypes {
         for (Class<?> c = type; c != null; c = c.getEnclosingClass()) {
             publicAllTheWay &= Modifier.isPublic(c.getModifiers());
         }
-        if (publicAllTheWay && module.isExported(pkg, codec)) {
+        // Unqualified: without an open package the codec falls back to public access, which reaches
+        // only packages exported to everyone ("exports p to io.etherware.core" is not enough).
+        if (publicAllTheWay && module.isExported(pkg)) {
             return;
         }
         throw new IllegalArgumentException("contents type " + type.getName() + " cannot be read by the codec: module "
-                + module.getName() + " " + (module.isExported(pkg, codec) ? "exports" : "neither exports nor opens")
+                + module.getName() + " " + (module.isExported(pkg) ? "exports" : "neither exports to all nor opens")
                 + " package " + pkg + (publicAllTheWay ? "" : " and the record is not public")
                 + "; add 'opens " + pkg + " to io.etherware.core;' to " + module.getName() + "'s module-info.java"
                 + (publicAllTheWay ? "" : " (or make the record public in an exported package)"));

@@ -131,7 +131,8 @@ public final class ManagementService implements Component {
         this.config = Objects.requireNonNull(config, "config");
         Management.registerContents(kernel.contentsTypes());
         this.network = network;
-        this.loader = new ImplementationLoader(config.allowlist(), config.trustedSigners(), config.classLoader());
+        this.loader = new ImplementationLoader(config.allowlist(), config.trustedSigners(), config.classLoader(),
+                kernel.contentsTypes());
         this.access = new AccessControl(kernel, config);
         this.counters = counters;
         this.jarLoaders = jarLoaders;

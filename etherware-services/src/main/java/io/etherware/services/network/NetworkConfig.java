@@ -332,7 +332,10 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
         /**
          * How messages are encoded on the wire. Default: a {@link MessageCodec} with a document
          * limit of {@code maxFrameBytes - 64}, so every message that encodes fits a frame, over the
-         * contents types named in the {@link Builder} defaults.
+         * node's contents types ({@code Kernel.contentsTypes()}), made when the messenger starts.
+         * A codec given here keeps its own registry: build it over the node's
+         * ({@code MessageCodec.builder().contentsTypes(node.contentsTypes())}), or the kernel's
+         * notices and the services' messages will not cross.
          *
          * @param value the codec, or null for the default; its contents types must include every
          *              contents type sent across and match the peers'

@@ -111,7 +111,8 @@ class HostileStreamIT {
         // Nothing new is sent until the legitimate peer is back: what it loses is then exactly what was
         // in flight at the attack, however long the machine takes to let it read the target's BYE.
         load.pause();
-        long inFlightAtAttack = load.pending();
+        // Also what already failed during the stall (a request timing out while the link is held).
+        long inFlightAtAttack = load.pending() + load.failures().size();
         path.stall(false);
 
         awaitReconnected();

@@ -30,9 +30,9 @@ class ReadmeExampleIT {
             plant.add(Profile.of("thermometer"), () -> (message, context) -> context.reply(message, new Reading(19.5)));
             controlNet.awaitResolvable(Profile.of("thermometer"), Duration.ofSeconds(5)); // announced by plant
             Message reply = control.requestBlocking(Profile.of("thermometer"), new Text("read"));
-            // README example ends
             assertEquals(new Reading(19.5), reply.contents());
             assertTrue(controlNet.peer("plant").orElseThrow().connected());
         }
+        // README example ends
     }
 }

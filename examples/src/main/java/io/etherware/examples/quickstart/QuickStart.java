@@ -92,6 +92,9 @@ public final class QuickStart {
              // Declared last, closed first: the Ticks stop before the network and the nodes go.
              var notifier = Notifier.install(control, NotifierConfig.defaults())) {
             plant.add(ROOM, () -> room);
+            if (!controlNet.awaitResolvable(ROOM, Duration.ofSeconds(5))) { // announced by plant
+                throw new IllegalStateException("the room was never announced to the control node");
+            }
             control.add(CONTROLLER, () -> new Controller(notifier.profile(), subscribed, cycles));
             NotifierReply answer = subscribed.get(5, TimeUnit.SECONDS); // throws if refused or unanswered
             LOG.info("subscribed: first Tick at {} ns", answer.firstReleaseNs());

@@ -4,6 +4,7 @@ import io.etherware.core.component.Component;
 import io.etherware.core.component.ComponentContext;
 import io.etherware.core.component.ComponentState;
 import io.etherware.core.message.Contents;
+import io.etherware.core.message.ContentsTypes;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
 import io.etherware.pendulum.serial.Angles;
@@ -43,6 +44,17 @@ public final class DspProxy implements Component {
     public static final Profile DEFAULT_PROFILE = Profile.of("dsp-proxy", "pendulum", "1");
 
     private static final Logger LOG = LoggerFactory.getLogger(DspProxy.class);
+
+    /**
+     * Registers the pendulum's contents ({@link PendulumContents#register}) in {@code types}; the
+     * management service calls this on a node's registry when it loads this class for an upgrade
+     * or a migration.
+     *
+     * @param types the node's registry
+     */
+    public static void registerContents(ContentsTypes types) {
+        PendulumContents.register(types);
+    }
 
     private final DspClient client;
     private long angleReads;

@@ -3,6 +3,7 @@ package io.etherware.pendulum.components;
 import io.etherware.core.component.Component;
 import io.etherware.core.component.ComponentContext;
 import io.etherware.core.component.ComponentState;
+import io.etherware.core.message.ContentsTypes;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
 import io.etherware.core.message.QoS;
@@ -47,6 +48,17 @@ public final class PendulumController implements Component {
     public static final Profile DEFAULT_PROFILE = Profile.of("controller", "pendulum", "1");
 
     private static final Logger LOG = LoggerFactory.getLogger(PendulumController.class);
+
+    /**
+     * Registers the pendulum's contents ({@link PendulumContents#register}) in {@code types}; the
+     * management service calls this on a node's registry when it loads this class for an upgrade
+     * or a migration.
+     *
+     * @param types the node's registry
+     */
+    public static void registerContents(ContentsTypes types) {
+        PendulumContents.register(types);
+    }
 
     private final ControllerConfig config;
     private final GainSet gains;

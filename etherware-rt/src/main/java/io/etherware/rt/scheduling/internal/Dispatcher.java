@@ -103,15 +103,20 @@ public final class Dispatcher implements Runnable {
     @Override
     public void run() {
         try {
+            // First-time class loading and initialization (the JFR events) at the inherited,
+            // ordinary priority, before the real-time one: at SCHED_FIFO it would hold a CPU
+            // against the JVM's own ordinary threads (JIT compilers, the VM thread), which the
+            // other dispatchers starting beside it may be waiting for.
+            preloadPerJobClasses();
             // The scheduler warns for all dispatchers at once, once it has every grant.
             grant = Platform.current().configureCurrentThreadWithoutWarning(spec.policy(), spec.cpus());
         } catch (RuntimeException e) {
-            LOG.error("dispatcher {} could not configure its thread; it runs at the inherited priority", thread.getName(), e);
+            LOG.error("dispatcher {} could not prepare or configure its thread; it runs at the inherited priority",
+                    thread.getName(), e);
             grant = new ThreadGrant(thread.getName(), -1, spec.policy(), ThreadPolicy.NON_REALTIME, spec.cpus(),
                     CpuSet.inherit(), List.of(new PlatformRefusal("thread priority", spec.policy().toString(),
                             Errno.ENOSYS, Errno.name(Errno.ENOSYS), e.toString())));
         } finally {
-            preloadPerJobClasses();
             started.countDown();
         }
         for (Job job = next(); job != null; job = next()) {

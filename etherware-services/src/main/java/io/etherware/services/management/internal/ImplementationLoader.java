@@ -1,11 +1,13 @@
 package io.etherware.services.management.internal;
 
 import io.etherware.core.component.Component;
+import io.etherware.core.message.ContentsTypes;
 import io.etherware.services.management.ManagementFailure.Reason;
 import io.etherware.services.management.UpgradeResult;
 import java.io.IOException;
 import java.lang.reflect.Constructor;
 import java.lang.reflect.InvocationTargetException;
+import java.lang.reflect.Method;
 import java.lang.reflect.Modifier;
 import java.net.URLClassLoader;
 import java.nio.file.Files;
@@ -40,16 +42,20 @@ public final class ImplementationLoader {
     private final List<Path> allowlist;
     private final PluginVerifier verifier;
     private final ClassLoader classLoader;
+    private final ContentsTypes contentsTypes;
 
     /**
      * @param allowlist      canonical directories jars may come from
      * @param trustedSigners the certificates a jar's signers must be, or chain up to
      * @param classLoader    the node's class loader: class-path implementations, parent of jar loaders
+     * @param contentsTypes  the node's registry, where a loaded class registers its contents
      */
-    public ImplementationLoader(List<Path> allowlist, List<X509Certificate> trustedSigners, ClassLoader classLoader) {
+    public ImplementationLoader(List<Path> allowlist, List<X509Certificate> trustedSigners, ClassLoader classLoader,
+                                ContentsTypes contentsTypes) {
         this.allowlist = List.copyOf(allowlist);
         this.verifier = new PluginVerifier(trustedSigners);
         this.classLoader = Objects.requireNonNull(classLoader, "classLoader");
+        this.contentsTypes = Objects.requireNonNull(contentsTypes, "contentsTypes");
     }
 
     /**
@@ -97,6 +103,7 @@ public final class ImplementationLoader {
                 from = jarLoader;
             }
             Class<? extends Component> type = checkedClass(className, from, jarLoader, source);
+            registerContentsOf(type);
             Constructor<? extends Component> constructor = constructor(type, configuration);
             Object[] arguments = configuration == null ? new Object[0] : new Object[] {configuration};
             Component first = construct(constructor, arguments);
@@ -116,6 +123,34 @@ public final class ImplementationLoader {
         } catch (LoadFailure | RuntimeException | Error e) {
             closeQuietly(jarLoader);
             throw e;
+        }
+    }
+
+    /**
+     * Calls the class's {@code public static void registerContents(ContentsTypes)}, if it declares
+     * one, on the node's registry: how an implementation from a jar, or the target of a migration,
+     * brings its own contents (its state's type, new messages) before its first instance runs or
+     * its state arrives. Explicit, and only for the class being loaded; never a static initializer.
+     */
+    private void registerContentsOf(Class<? extends Component> type) throws LoadFailure {
+        Method register;
+        try {
+            register = type.getMethod("registerContents", ContentsTypes.class);
+        } catch (NoSuchMethodException e) {
+            return;
+        }
+        if (!Modifier.isStatic(register.getModifiers())) {
+            throw new LoadFailure(Reason.INVALID_IMPLEMENTATION, "class '" + type.getName()
+                    + "' declares registerContents(ContentsTypes) but not static; make it public static");
+        }
+        try {
+            register.invoke(null, contentsTypes);
+        } catch (InvocationTargetException e) {
+            throw new LoadFailure(Reason.INVALID_IMPLEMENTATION, "class '" + type.getName()
+                    + "'.registerContents failed: " + e.getCause(), e.getCause());
+        } catch (IllegalAccessException e) {
+            throw new LoadFailure(Reason.INVALID_IMPLEMENTATION, "class '" + type.getName()
+                    + "'.registerContents is not accessible: " + e.getMessage(), e);
         }
     }
 
