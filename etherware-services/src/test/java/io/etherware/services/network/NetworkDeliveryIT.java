@@ -97,6 +97,10 @@ class NetworkDeliveryIT {
             }
             Await.until("100,000 messages arrive", 180_000, () -> sink.received.get() == count);
             assertEquals(0, sink.outOfOrder.get());
+            // The counters count after the hand-off (the writer after its flush, the reader after the
+            // kernel took the message), so the sink can see the last message before they move.
+            Await.until("the counters count every message", 10_000, () -> a.net.stats().messagesSent() >= count
+                    && b.net.stats().messagesReceived() >= count);
             assertEquals(count, a.net.stats().messagesSent());
             assertEquals(count, b.net.stats().messagesReceived());
             assertEquals(0, a.net.stats().overflowDropped());
