@@ -1,6 +1,7 @@
 package io.etherware.examples.bench;
 
 import io.etherware.rt.stats.LatencySnapshot;
+import java.util.function.DoubleToLongFunction;
 import org.HdrHistogram.Histogram;
 
 /**
@@ -34,13 +35,7 @@ public record Percentiles(long count, long p50Ns, long p99Ns, long p999Ns, long 
         if (histogram.getTotalCount() == 0) {
             return NONE;
         }
-        // HdrHistogram reports the highest equivalent value of a bucket for percentiles and the
-        // exact maximum; clamp so the summary stays ordered.
-        long maxNs = histogram.getMaxValue();
-        long p999Ns = Math.min(maxNs, histogram.getValueAtPercentile(99.9));
-        long p99Ns = Math.min(p999Ns, histogram.getValueAtPercentile(99));
-        long p50Ns = Math.min(p99Ns, histogram.getValueAtPercentile(50));
-        return new Percentiles(histogram.getTotalCount(), p50Ns, p99Ns, p999Ns, maxNs);
+        return clamped(histogram.getTotalCount(), histogram.getMaxValue(), histogram::getValueAtPercentile);
     }
 
     /** The percentiles of a snapshot from Etherware's statistics (a scheduler's, the Notifier's). */
@@ -48,11 +43,18 @@ public record Percentiles(long count, long p50Ns, long p99Ns, long p999Ns, long 
         if (snapshotNs.count() == 0) {
             return NONE;
         }
-        long maxNs = snapshotNs.maxNs();
-        long p999Ns = Math.min(maxNs, snapshotNs.percentileNs(99.9));
-        long p99Ns = Math.min(p999Ns, snapshotNs.percentileNs(99));
-        long p50Ns = Math.min(p99Ns, snapshotNs.percentileNs(50));
-        return new Percentiles(snapshotNs.count(), p50Ns, p99Ns, p999Ns, maxNs);
+        return clamped(snapshotNs.count(), snapshotNs.maxNs(), snapshotNs::percentileNs);
+    }
+
+    /**
+     * A histogram reports the highest equivalent value of a bucket for percentiles and the exact
+     * maximum: clamp each percentile to the next so the summary stays ordered.
+     */
+    private static Percentiles clamped(long count, long maxNs, DoubleToLongFunction percentileNs) {
+        long p999Ns = Math.min(maxNs, percentileNs.applyAsLong(99.9));
+        long p99Ns = Math.min(p999Ns, percentileNs.applyAsLong(99));
+        long p50Ns = Math.min(p99Ns, percentileNs.applyAsLong(50));
+        return new Percentiles(count, p50Ns, p99Ns, p999Ns, maxNs);
     }
 
     /** The percentiles of samples in nanoseconds (any order). */
