@@ -83,6 +83,7 @@ class HostileStreamIT {
     @Test
     void shouldCostTheLegitPeerAtMostItsRequestsInFlightWhenAnImpostorResumesItsStreamOverPlainTcp()
             throws Exception {
+        long openedBefore = legit.net.stats().connectionsOpened();
         long claimed = holdTheLegitimateLink();
         MessageId impostorsRequest = new MessageId("legit", 1_000_000);
         int repliesTaken = 0;
@@ -115,7 +116,9 @@ class HostileStreamIT {
         long inFlightAtAttack = load.pending() + load.failures().size();
         path.stall(false);
 
-        awaitReconnected();
+        // A new connection, not the held one: until the legitimate peer reads the target's BYE its
+        // old connection still looks up, and the target may not have seen the impostor leave yet.
+        awaitReconnected(openedBefore);
         load.resume();
         long recoveredAt = awaitAnswering();
         Thread.sleep(500);
@@ -263,14 +266,18 @@ class HostileStreamIT {
 
     /** Waits until both nodes have the legitimate connection up again; the load's index then. */
     private long awaitRecovery() throws InterruptedException {
-        awaitReconnected();
+        awaitReconnected(-1);
         return awaitAnswering();
     }
 
-    private void awaitReconnected() throws InterruptedException {
-        Await.until("the legitimate peer is connected again", () -> legit.net.peer("target")
-                .map(PeerStatus::connected).orElse(false) && target.net.peer("legit").map(PeerStatus::connected)
-                .orElse(false));
+    /**
+     * Waits until both nodes have the legitimate connection up, and the legitimate peer has opened
+     * more than {@code openedBefore} connections in all (-1: any connection will do).
+     */
+    private void awaitReconnected(long openedBefore) throws InterruptedException {
+        Await.until("the legitimate peer is connected again", () -> legit.net.stats().connectionsOpened()
+                > openedBefore && legit.net.peer("target").map(PeerStatus::connected).orElse(false)
+                && target.net.peer("legit").map(PeerStatus::connected).orElse(false));
     }
 
     /** Waits for five more answers; returns the index of the next request. */
