@@ -353,9 +353,9 @@ public final class Engine {
             log.info("node {}: node '{}' restarted (new incarnation)", nodeId, peer.nodeId);
             networkTime.forget(peer.nodeId);
         }
-        if (connection.lane() == 0) {
-            networkTime.onHandshake(peer.nodeId, hello.epochNs(), helloArrivedEpochNs);
-        }
+        // Every lane's handshake gives the first guess (ignored once exchanges are measured): the
+        // lane that connects first may carry messages before lane 0, which has the time probes, is up.
+        networkTime.onHandshake(peer.nodeId, hello.epochNs(), helloArrivedEpochNs);
         if (connection.dialer() != null) {
             connection.dialer().activated(peer.nodeId);
         }
