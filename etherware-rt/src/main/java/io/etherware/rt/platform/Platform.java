@@ -113,6 +113,12 @@ public final class Platform {
                     RefusalAdvice.forAffinity(cpus, placed.result().errno(), LinuxNative.getAffinity(0))));
         }
         if (requested.isRealtime() || LinuxNative.isAvailable()) {
+            // The queries that report the grant, once at the inherited priority: their first call
+            // links and loads, which at a real-time priority could wait on ordinary threads that
+            // the real-time ones starve.
+            LinuxNative.currentThreadId();
+            currentThreadPolicy();
+            currentThreadAffinity();
             int flags = requested.isRealtime() ? LinuxNative.SCHED_RESET_ON_FORK : 0;
             NativeResult result = LinuxNative.setScheduler(0, osPolicy(requested.policy()) | flags,
                     requested.priority());

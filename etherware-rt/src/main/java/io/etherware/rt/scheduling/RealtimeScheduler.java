@@ -178,12 +178,16 @@ public final class RealtimeScheduler implements Scheduler {
                             name() + "-dispatcher-" + id + suffix);
                 }
                 newContext.setDispatchers(all);
-                for (Dispatcher dispatcher : all) {
-                    dispatcher.start();
-                }
+                // One at a time: each does its first-time work at its inherited priority, then takes
+                // its real-time one, while the ones before it are parked. Started together, two that
+                // had switched once burned both CPUs of a 2-core machine for 11 minutes while the
+                // third, still ordinary, and the starting thread got only the kernel's real-time
+                // throttling remainder: a real-time thread that spins for anything an ordinary
+                // thread holds starves it.
                 var grants = new ArrayList<ThreadGrant>();
                 long deadlineNs = System.nanoTime() + START_TIMEOUT_NS;
                 for (Dispatcher dispatcher : all) {
+                    dispatcher.start();
                     grants.add(awaitGrant(dispatcher, deadlineNs));
                 }
                 warnMostDemandingFirst(grants);
