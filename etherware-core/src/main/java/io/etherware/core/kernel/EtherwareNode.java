@@ -395,6 +395,11 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
     }
 
     @Override
+    public CompletableFuture<Void> holdAsync(Profile profile, Duration settleWait) {
+        return core.holdAsync(profile, settleWait);
+    }
+
+    @Override
     public void release(Profile profile) {
         core.release(profile);
     }

@@ -7,6 +7,8 @@ import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageId;
 import io.etherware.core.message.Profile;
 import io.etherware.core.time.NodeClock;
+import java.time.Duration;
+import java.util.Objects;
 import java.util.concurrent.CompletableFuture;
 import java.util.function.LongConsumer;
 import java.util.function.Supplier;
@@ -84,6 +86,32 @@ public interface Kernel {
      * @throws IllegalArgumentException   if it resolves to a component of another node
      */
     CompletableFuture<Void> holdAsync(Profile profile);
+
+    /**
+     * {@link #holdAsync(Profile)} at a boundary where the component is also quiescent: it waits for
+     * no outcome of a request of its own (Kramer and Magee's passive state). Until then the
+     * component runs on as usual, so the outcomes of its requests in flight reach it here, and a
+     * migration that holds it this way moves no request that could not follow it. A component
+     * that still waits for an outcome after {@code settleWait} is held at its next boundary
+     * anyway (each boundary then, or at the latest when {@code settleWait} ends).
+     *
+     * <p>The default implementation, for kernels that do not track requests, holds at the next
+     * boundary.
+     *
+     * @param profile    the exact profile of a local component, or a query that matches only it
+     * @param settleWait how long to wait for the outcomes of its requests; zero holds at the next
+     *                   boundary
+     * @return a future that completes when the component is held
+     * @throws ProfileResolutionException if the profile does not resolve
+     * @throws IllegalArgumentException   if it resolves to a component of another node, or
+     *                                    {@code settleWait} is negative
+     */
+    default CompletableFuture<Void> holdAsync(Profile profile, Duration settleWait) {
+        if (Objects.requireNonNull(settleWait, "settleWait").isNegative()) {
+            throw new IllegalArgumentException("settleWait=" + settleWait + " must not be negative");
+        }
+        return holdAsync(profile);
+    }
 
     /**
      * Ends a hold: the messages kept meanwhile are delivered, in order, exactly once. Does

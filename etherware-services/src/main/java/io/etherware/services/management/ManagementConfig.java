@@ -83,11 +83,13 @@ import java.util.Set;
  *                             (also a migration's hand-over answer, for the gap)
  * @param migrationStepTimeoutNs how long a migration's source waits for each answer of the target
  * @param handoverWaitNs       how long a migration's target waits for the hand-over
+ * @param settleWaitNs         how long a migration's source waits, before it holds the component,
+ *                             for the outcomes of the component's own requests in flight
  * @param classLoader          the node's class loader for implementations
  */
 public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trustedSigners, List<AccessRule> accessList,
                                boolean allowUnauthenticatedLinks, long firstMessageWaitNs, long migrationStepTimeoutNs,
-                               long handoverWaitNs, ClassLoader classLoader) {
+                               long handoverWaitNs, long settleWaitNs, ClassLoader classLoader) {
 
     /**
      * Copies the lists and checks the fields.
@@ -96,7 +98,9 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
      * @throws IllegalArgumentException if an allowlist entry is not absolute and normalized,
      *                                  {@code firstMessageWaitNs} &lt; 0,
      *                                  {@code migrationStepTimeoutNs} &lt;= 0, or
-     *                                  {@code handoverWaitNs} &lt;= {@code migrationStepTimeoutNs}
+     *                                  {@code handoverWaitNs} &lt;= {@code migrationStepTimeoutNs},
+     *                                  or {@code settleWaitNs} is negative or not below
+     *                                  {@code migrationStepTimeoutNs}
      */
     public ManagementConfig {
         allowlist = List.copyOf(allowlist);
@@ -114,6 +118,10 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
         }
         if (migrationStepTimeoutNs <= 0) {
             throw new IllegalArgumentException("migrationStepTimeoutNs=" + migrationStepTimeoutNs + " must be > 0");
+        }
+        if (settleWaitNs < 0 || settleWaitNs >= migrationStepTimeoutNs) {
+            throw new IllegalArgumentException("settleWaitNs=" + settleWaitNs + " must be >= 0 and below"
+                    + " migrationStepTimeoutNs=" + migrationStepTimeoutNs);
         }
         if (handoverWaitNs <= migrationStepTimeoutNs) {
             throw new IllegalArgumentException("handoverWaitNs=" + handoverWaitNs + " must be > migrationStepTimeoutNs="
@@ -149,6 +157,7 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
         private long firstMessageWaitNs = Duration.ofSeconds(1).toNanos();
         private long migrationStepTimeoutNs = Duration.ofSeconds(2).toNanos();
         private long handoverWaitNs = Duration.ofSeconds(5).toNanos();
+        private long settleWaitNs = Duration.ofMillis(100).toNanos();
         private ClassLoader classLoader = ClassLoader.getSystemClassLoader();
 
         Builder() {
@@ -341,6 +350,26 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
         }
 
         /**
+         * How long a migration's source lets the component run on, before it holds it, for the
+         * outcomes of the component's own requests in flight (replies, failures, timeouts) to
+         * reach it at the source, where their callbacks live: the component is held at its first
+         * message boundary without a request in flight (see
+         * {@link io.etherware.core.kernel.Kernel#holdAsync(io.etherware.core.message.Profile, Duration)}).
+         * A component still waiting after this long is held anyway, and the outcomes that come
+         * later are handed to the stopped instance at the source, not to the moved one. Default
+         * 100 ms: a few round trips of a control loop. Zero holds at the next boundary.
+         *
+         * @param value &gt;= 0, and shorter than the {@link #migrationStepTimeout} (checked by
+         *              {@link #build()})
+         * @return this builder
+         */
+        public Builder settleWait(Duration value) {
+            Objects.requireNonNull(value, "settleWait");
+            settleWaitNs = value.toNanos();
+            return this;
+        }
+
+        /**
          * Where class-path implementations come from, and the parent of jar class loaders.
          * Default: the system class loader.
          *
@@ -362,7 +391,7 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
          */
         public ManagementConfig build() {
             return new ManagementConfig(allowlist, trustedSigners, accessList, allowUnauthenticatedLinks,
-                    firstMessageWaitNs, migrationStepTimeoutNs, handoverWaitNs, classLoader);
+                    firstMessageWaitNs, migrationStepTimeoutNs, handoverWaitNs, settleWaitNs, classLoader);
         }
     }
 }

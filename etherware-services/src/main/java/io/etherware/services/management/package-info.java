@@ -57,8 +57,15 @@
  * <ol>
  *   <li><b>prepare</b>: the target loads the class (class path or allowlisted jar, as for an
  *       upgrade) and constructs the instance; the component runs on meanwhile.</li>
- *   <li><b>quiesce</b>: the source holds the component at a message boundary; its messages are
- *       kept, in order.</li>
+ *   <li><b>quiesce</b>: the source holds the component at a message boundary where it waits for
+ *       no outcome of a request of its own (Kramer and Magee's passive state,
+ *       {@link io.etherware.core.kernel.Kernel#holdAsync(io.etherware.core.message.Profile,
+ *       java.time.Duration)}); its messages are kept from then on, in order. Until then it runs
+ *       on, so the replies to its requests in flight reach it at the source, where the callbacks
+ *       that wait for them live: a callback cannot travel, so the request completes before the
+ *       move instead of after it. One that still waits after
+ *       {@link io.etherware.services.management.ManagementConfig#settleWaitNs()} (100 ms by
+ *       default) is held anyway; the outcomes that come later go to the stopped instance.</li>
  *   <li><b>transfer</b>: the snapshot travels as XML in the INSTALL step; the target restores it
  *       and registers the component <em>held</em> under its profile and under an <em>arrival</em>
  *       profile unique to this migration ({@code etherware.arrival[id=...]},
@@ -97,7 +104,9 @@
  * before learning of the move (its message crossing the source's announcement) may see that message
  * handled after one it then sent to the target directly; closing it needs per-sender sequence
  * numbers. A message forwarded after its stream broke for good is reported undeliverable to its
- * sender, as any message on that link.
+ * sender, as any message on that link. A component that always has a request in flight (it asks
+ * again from each reply) is never quiescent: it moves after the settle wait, and the reply then in
+ * flight is lost to it.
  *
  * <h3>Ticks</h3>
  * A Notifier subscription stays with the Notifier it was made with: Ticks are messages to the

@@ -26,7 +26,9 @@ import io.etherware.core.message.Tick;
 import io.etherware.core.scheduler.Job;
 import io.etherware.core.scheduler.JobRunner;
 import io.etherware.core.scheduler.Scheduler;
+import io.etherware.core.time.Durations;
 import io.etherware.core.time.NodeClock;
+import java.time.Duration;
 import java.util.ArrayList;
 import java.util.Comparator;
 import java.util.List;
@@ -327,6 +329,27 @@ public final class KernelCore implements Kernel, JobRunner {
             shell.hold();
             held.complete(null);
         });
+        return held;
+    }
+
+    @Override
+    public CompletableFuture<Void> holdAsync(Profile profile, Duration settleWait) {
+        if (Objects.requireNonNull(settleWait, "settleWait").isNegative()) {
+            throw new IllegalArgumentException("settleWait=" + settleWait + " must not be negative");
+        }
+        LocalShell shell = localShell(profile);
+        var held = new CompletableFuture<Void>();
+        long waitNs = Durations.toNs("settleWait", settleWait);
+        long deadlineNs = clock.nanoTime() + waitNs;
+        shell.atBoundary(() -> shell.holdWhenSettled(held, deadlineNs, waitNs == 0));
+        if (waitNs > 0) {
+            // Without a boundary after the deadline (an idle component waiting for a lost reply).
+            requests.schedule(() -> {
+                if (!held.isDone()) {
+                    shell.atBoundary(() -> shell.holdWhenSettled(held, deadlineNs, true));
+                }
+            }, waitNs);
+        }
         return held;
     }
 

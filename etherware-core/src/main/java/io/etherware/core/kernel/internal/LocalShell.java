@@ -15,6 +15,7 @@ import java.util.List;
 import java.util.Objects;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.atomic.AtomicBoolean;
+import java.util.concurrent.atomic.AtomicInteger;
 import java.util.function.LongConsumer;
 import java.util.function.Supplier;
 import org.slf4j.Logger;
@@ -96,6 +97,13 @@ public final class LocalShell implements Shell {
     /** Completes when a relocation has switched the profile to its route; owner or last job. */
     private CompletableFuture<Void> switched;
     private ProfileTable relocationRegistry;
+
+    /** Requests of this component whose outcome has not been handed to it yet. */
+    private final AtomicInteger awaitingOutcomes = new AtomicInteger();
+    /** A hold that waits for the component to be quiescent ({@link #holdWhenSettled}); owner. */
+    private CompletableFuture<Void> holdWhenSettled;
+    /** When that hold stops waiting for outcomes ({@link System#nanoTime()} scale); owner. */
+    private long holdWhenSettledByNs;
 
     private ComponentState lastSnapshot; // owner
     /** When the current logic's last handling ended; for a timed swap's gap. */
@@ -225,8 +233,40 @@ public final class LocalShell implements Shell {
             if (counted) {
                 leftJob(job);
             }
+            if (holdWhenSettled != null) {
+                holdWhenSettled(holdWhenSettled, holdWhenSettledByNs, false);
+            }
             gate.leave();
         }
+    }
+
+    /** A request of this component was registered: its outcome is awaited. Any thread. */
+    void requestSent() {
+        awaitingOutcomes.incrementAndGet();
+    }
+
+    /** The outcome of a request of this component was handed to it, or the request was never sent. */
+    void requestSettled() {
+        awaitingOutcomes.decrementAndGet();
+    }
+
+    /**
+     * Owner, at a boundary: holds now and completes {@code held} if {@code now}, if the component
+     * awaits no outcome of its requests, or if {@code byNs} has passed; else keeps the hold
+     * pending, and every later boundary tries again.
+     */
+    void holdWhenSettled(CompletableFuture<Void> held, long byNs, boolean now) {
+        if (held.isDone()) {
+            return;
+        }
+        if (!now && awaitingOutcomes.get() > 0 && kernel.clock().nanoTime() - byNs < 0) {
+            holdWhenSettled = held;
+            holdWhenSettledByNs = byNs;
+            return;
+        }
+        holdWhenSettled = null;
+        gate.hold();
+        held.complete(null);
     }
 
     /** A counted job ran or was forwarded. */

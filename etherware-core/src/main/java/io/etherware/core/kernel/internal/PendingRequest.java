@@ -44,12 +44,18 @@ final class PendingRequest {
         return reply != null ? reply : request;
     }
 
-    /** Completes the future with the recorded outcome. */
+    /** Completes the future with the recorded outcome (once), then counts it settled for its requester. */
     void settle() {
-        if (failure != null) {
-            future.completeExceptionally(failure);
-        } else {
-            future.complete(reply);
+        try {
+            if (failure != null) {
+                future.completeExceptionally(failure);
+            } else {
+                future.complete(reply);
+            }
+        } finally {
+            if (requester != null) {
+                requester.requestSettled();
+            }
         }
     }
 }

@@ -78,10 +78,13 @@ final class RequestTable {
         if (pending.putIfAbsent(entry.id, entry) != null) {
             throw new IllegalArgumentException("request id " + entry.id + " is already waiting for a reply");
         }
+        if (requester != null) {
+            requester.requestSent();
+        }
         try {
             entry.timeout = timer.schedule(() -> onTimeout(entry, timeoutNs), timeoutNs, TimeUnit.NANOSECONDS);
         } catch (RejectedExecutionException e) {
-            pending.remove(entry.id);
+            cancel(entry);
             throw new IllegalStateException("node '" + nodeId + "' is closed; no more requests", e);
         }
         return entry;
@@ -91,6 +94,18 @@ final class RequestTable {
     void cancel(PendingRequest entry) {
         if (pending.remove(entry.id, entry)) {
             cancelTimeout(entry);
+            if (entry.requester != null) {
+                entry.requester.requestSettled();
+            }
+        }
+    }
+
+    /** Runs {@code task} on the table's timer thread after {@code delayNs}; nothing once closed. */
+    void schedule(Runnable task, long delayNs) {
+        try {
+            timer.schedule(task, delayNs, TimeUnit.NANOSECONDS);
+        } catch (RejectedExecutionException e) {
+            // Closed: the node's components are stopping anyway.
         }
     }
 

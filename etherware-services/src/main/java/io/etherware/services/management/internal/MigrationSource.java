@@ -17,6 +17,7 @@ import io.etherware.services.management.MigrationStep;
 import io.etherware.services.management.MigrationStep.Phase;
 import io.etherware.services.management.MigrationStepDone;
 import io.etherware.services.network.NetworkMessenger;
+import java.time.Duration;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.ExecutionException;
 import java.util.concurrent.TimeUnit;
@@ -88,14 +89,17 @@ public final class MigrationSource {
                 request.configuration(), null, 0), stepNs);
         long quiesceStartNs = kernel.clock().nanoTime();
 
-        // (ii) Quiesce at a message boundary: from now on its messages are kept here, in order.
-        CompletableFuture<Void> held = kernel.holdAsync(profile);
+        // (ii) Quiesce at a message boundary where the component waits for no reply (the outcomes
+        // of its requests reach it here, where their callbacks are): from now on its messages are
+        // kept here, in order.
+        CompletableFuture<Void> held = kernel.holdAsync(profile, Duration.ofNanos(config.settleWaitNs()));
+        long quiesceWaitNs = config.settleWaitNs() + stepNs;
         try {
-            held.get(stepNs, TimeUnit.NANOSECONDS);
+            held.get(quiesceWaitNs, TimeUnit.NANOSECONDS);
         } catch (TimeoutException e) {
             held.thenRun(() -> kernel.release(profile)); // the hold lands later: undo it then
             throw new LoadFailure(Reason.NOT_RUNNING, "'" + profile + "' did not reach a message boundary within "
-                    + TimeUnit.NANOSECONDS.toMillis(stepNs) + " ms (a long handling?); it runs on at '"
+                    + TimeUnit.NANOSECONDS.toMillis(quiesceWaitNs) + " ms (a long handling?); it runs on at '"
                     + kernel.nodeId() + "'");
         } catch (InterruptedException e) {
             held.thenRun(() -> kernel.release(profile));

@@ -1,0 +1,118 @@
+package io.etherware.core.kernel;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertThrows;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.etherware.core.message.Criticality;
+import io.etherware.core.message.Message;
+import io.etherware.core.message.Profile;
+import io.etherware.core.message.QoS;
+import io.etherware.core.testing.Await;
+import io.etherware.core.testing.MultiDispatcherScheduler;
+import io.etherware.core.testing.Num;
+import java.time.Duration;
+import java.util.List;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.CopyOnWriteArrayList;
+import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.TimeUnit;
+import org.junit.jupiter.api.Test;
+
+/**
+ * A hold that waits for the component to be quiescent ({@link Kernel#holdAsync(Profile, Duration)}):
+ * the outcomes of its requests in flight reach it before it is held, so a migration that holds it
+ * so leaves no reply behind; a reply that never comes holds it anyway at the end of the wait.
+ */
+class QuiescentHoldTest {
+
+    private static final Profile REQUESTER = Profile.of("requester");
+    private static final Profile RESPONDER = Profile.of("responder");
+    private static final long REQUEST_TIMEOUT_NS = TimeUnit.SECONDS.toNanos(60);
+
+    /** Asks the responder on each Num; records what each request came to. */
+    private static void addRequester(EtherwareNode node, List<String> outcomes, List<Long> handled) {
+        node.add(REQUESTER, () -> (message, context) -> {
+            if (message.contents() instanceof Num num) {
+                handled.add(num.value());
+                context.request(RESPONDER, num, QoS.of(Criticality.HIGH), REQUEST_TIMEOUT_NS)
+                        .whenComplete((reply, failure) -> outcomes.add(failure == null ? "reply " + num.value()
+                                : "failed " + num.value()));
+            }
+        });
+    }
+
+    /** Answers each request once {@code gate} is open. */
+    private static void addResponder(EtherwareNode node, CountDownLatch gate, List<Long> asked) {
+        node.add(RESPONDER, () -> (message, context) -> {
+            asked.add(message.contentsAs(Num.class).value());
+            if (gate.await(30, TimeUnit.SECONDS)) {
+                context.reply(message, message.contents());
+            }
+        });
+    }
+
+    private final List<String> outcomes = new CopyOnWriteArrayList<>();
+    private final List<Long> handled = new CopyOnWriteArrayList<>();
+    private final List<Long> asked = new CopyOnWriteArrayList<>();
+    private final CountDownLatch answer = new CountDownLatch(1);
+
+    /** A started node whose requester has asked the responder once, the reply held back by {@link #answer}. */
+    private EtherwareNode requestInFlight(String nodeId) throws InterruptedException {
+        var node = EtherwareNode.builder().nodeId(nodeId).scheduler(() -> MultiDispatcherScheduler.roundRobin(2))
+                .build();
+        addRequester(node, outcomes, handled);
+        addResponder(node, answer, asked);
+        node.start();
+        node.send(REQUESTER, new Num(1));
+        Await.until("the request reached the responder", () -> asked.size() == 1);
+        return node;
+    }
+
+    @Test
+    void shouldHoldOnlyOnceTheReplyInFlightHasReachedTheComponent() throws Exception {
+        try (var node = requestInFlight("quiescent")) {
+
+            var seenAtHold = new CompletableFuture<List<String>>();
+            CompletableFuture<Void> held = node.holdAsync(REQUESTER, Duration.ofSeconds(30));
+            held.thenRun(() -> seenAtHold.complete(List.copyOf(outcomes)));
+            // The component is idle, but waits for its reply: it is not held, and runs on.
+            node.send(REQUESTER, new Num(2));
+            Await.until("a message while the hold waits is handled", () -> handled.size() == 2);
+            assertFalse(held.isDone(), "held while a reply was in flight");
+
+            answer.countDown();
+            assertEquals(List.of("reply 1", "reply 2"), seenAtHold.get(30, TimeUnit.SECONDS).stream().sorted().toList(),
+                    "both replies reached the component before the hold");
+            node.send(REQUESTER, new Num(3));
+            node.release(REQUESTER);
+            Await.until("the message sent during the hold, after the release", () -> handled.size() == 3);
+        }
+    }
+
+    @Test
+    void shouldHoldAnywayWhenTheSettleWaitEndsWithTheReplyStillAwaited() throws Exception {
+        try (var node = requestInFlight("quiescent-late")) {
+
+            // No boundary comes after the wait ends (the component is idle): the wait's timer holds it.
+            node.holdAsync(REQUESTER, Duration.ofMillis(100)).get(30, TimeUnit.SECONDS);
+            assertEquals(List.of(), outcomes, "held with its request still in flight");
+            answer.countDown();
+            node.release(REQUESTER);
+            Await.until("the late reply reaches the component after the release", () -> outcomes.size() == 1);
+        }
+    }
+
+    @Test
+    void shouldHoldAnIdleComponentWithoutRequestsAtOnceAndRefuseANegativeWait() throws Exception {
+        try (var node = EtherwareNode.builder().nodeId("quiescent-idle").build()) {
+            addRequester(node, outcomes, handled);
+            node.start();
+            CompletableFuture<Void> held = node.holdAsync(REQUESTER, Duration.ofSeconds(30));
+            assertTrue(held.isDone(), "an idle component awaiting nothing is held on the calling thread");
+            node.release(REQUESTER);
+            assertThrows(IllegalArgumentException.class, () -> node.holdAsync(REQUESTER, Duration.ofMillis(-1)));
+        }
+    }
+}
