@@ -197,8 +197,9 @@ public interface Kernel {
     /**
      * Adds a component that arrives by migration, <em>held</em>: registered under its
      * {@code profile} (displacing the route to its source) and under {@code arrival}, a profile of
-     * its own to which the source forwards the messages it held and those that still reach it.
-     * Until {@link #admit} it handles nothing and keeps every message; the messages not sent to
+     * its own to which the source forwards the messages it held and those that reach it until it
+     * asks for the admission (then it sends to {@code profile}). Neither is announced as a second
+     * component: {@code arrival} is known to the source only. Until {@link #admit} it handles nothing and keeps every message; the messages not sent to
      * {@code arrival} are <em>penned</em>: kept behind the forwarded ones of the same urgency
      * (also after the admission, until the last penned one has run), because anything that came
      * through the source was sent before what comes here directly. The component is started now
@@ -230,8 +231,8 @@ public interface Kernel {
      * Completes an arrival ({@link #addHeld}) once {@code forwardedCount} messages to
      * {@code arrival} have come (at once if they have; 0 for at once): the component is released,
      * the messages kept so far are handled, the forwarded ones first, in order. The source says
-     * how many it forwarded, because its request to admit may overtake some of them on the way.
-     * {@code arrival} stays registered for messages still on their way through the source.
+     * how many it forwarded, because its request to admit may overtake some of them on the way;
+     * it sends nothing more to {@code arrival}, so the admission unregisters it.
      *
      * @param arrival        the arrival profile given to {@link #addHeld}
      * @param forwardedCount how many messages the source forwarded to {@code arrival}; &gt;= 0

@@ -50,6 +50,18 @@ public interface ProfileRegistry {
     boolean unregisterRemote(Profile profile);
 
     /**
+     * Points {@code profile} from one remote route to another in one step, so that no send in
+     * between finds it unregistered (a transport takes over the route a migration left at its
+     * source).
+     *
+     * @param profile     the exact profile
+     * @param expected    the route that must be registered for it now
+     * @param replacement the route it is registered for from now on
+     * @return whether {@code expected} was registered for it (and was replaced); false changes nothing
+     */
+    boolean replaceRemote(Profile profile, RemoteRoute expected, RemoteRoute replacement);
+
+    /**
      * Adds a listener told of every later change of the registry. A transport uses it to announce
      * the profiles its node hosts when they change.
      *

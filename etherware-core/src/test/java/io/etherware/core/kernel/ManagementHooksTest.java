@@ -19,6 +19,7 @@ import io.etherware.core.testing.MultiDispatcherScheduler;
 import io.etherware.core.testing.Num;
 import java.util.ArrayList;
 import java.util.List;
+import java.util.Set;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.CopyOnWriteArrayList;
@@ -302,8 +303,10 @@ class ManagementHooksTest {
             node.send(arrival, new Num(1));
             node.send(arrival, new Num(2));
             Await.until("the kept messages", () -> handled.size() == 4);
+            assertFalse(node.registry().profiles().contains(arrival), "admitted: nothing addresses the arrival now");
+            assertEquals(Set.of(MARKER, TARGET), node.registry().profiles());
             node.send(TARGET, new Num(4));
-            node.send(arrival, new Num(5)); // late from the source: still reaches it
+            node.send(TARGET, new Num(5)); // late through the source, which sends to the profile now
             Await.until("six messages", () -> handled.size() == 6);
             assertEquals(List.of(42L, 1043L, 2044L, 9045L, 4046L, 5047L), handled,
                     "forwarded first, then penned, counting on from the state");
@@ -311,8 +314,8 @@ class ManagementHooksTest {
             assertTrue(firstNs.get(30, TimeUnit.SECONDS) >= beforeNs, "the first handling is reported");
             assertThrows(IllegalArgumentException.class, () -> node.addHeld(TARGET, Profile.of("other"), () -> arrived,
                     ns -> { }), "a profile names one component");
-            node.removeAsync(arrival).get(30, TimeUnit.SECONDS);
-            assertFalse(node.registry().profiles().contains(TARGET), "removed by its arrival profile, both go");
+            node.removeAsync(TARGET).get(30, TimeUnit.SECONDS);
+            assertEquals(Set.of(MARKER), node.registry().profiles());
         }
     }
 

@@ -81,6 +81,64 @@ class MigrationIT {
         }
     }
 
+    @Test
+    void shouldLeaveNothingBehindAfterManyMovesAndFollowTheComponentOnToAThirdNode() throws Exception {
+        try (var a = MigrationNode.start("mig-a", MigrationNode.config().build());
+             var b = MigrationNode.start("mig-b", MigrationNode.config().build(), a.address());
+             var c = MigrationNode.start("mig-c", MigrationNode.config().build(), a.address(), b.address())) {
+            a.node.add(COUNTER, ReportingCounter::new);
+            for (MigrationNode node : List.of(a, b, c)) {
+                for (String other : List.of("mig-a", "mig-b", "mig-c")) {
+                    if (!other.equals(node.node.nodeId())) {
+                        node.awaitManagementOf(other);
+                    }
+                }
+            }
+            var stream = new SeqStream(a.node, COUNTER, STREAM_PERIOD_NS);
+            Await.until("every node routes the counter and the sink", () -> List.of(b, c).stream().allMatch(node ->
+                    node.node.registry().profiles().containsAll(Set.of(COUNTER, ReportingCounter.SINK))));
+            stream.awaitMore(100);
+            Set<Profile> atA = a.node.registry().profiles();
+            Set<Profile> atB = b.node.registry().profiles();
+
+            int roundTrips = 10;
+            for (int i = 0; i < roundTrips; i++) {
+                Management.migrate(a.node, "mig-a", COUNTER, "mig-b").get(30, TimeUnit.SECONDS);
+                stream.awaitMore(40);
+                Management.migrate(a.node, "mig-b", COUNTER, "mig-a").get(30, TimeUnit.SECONDS);
+                assertHostedBy(a, b);
+                stream.awaitMore(40);
+            }
+            stream.stopAndAssertExactlyOnceInOrder();
+            assertEquals(2 * roundTrips + 1, stream.handlers().size(), "A, then B and A in turn: " + stream.handlers());
+            // Nothing accumulates: no arrival profile, no route left behind, no shell kept.
+            Await.until("B routes the counter to A again", () -> b.node.registry().profiles().equals(atB));
+            assertEquals(atA, a.node.registry().profiles());
+            for (MigrationNode node : List.of(a, b, c)) {
+                assertTrue(node.node.registry().profiles().stream().noneMatch(p -> p.role().equals("etherware.arrival")),
+                        node.node.nodeId() + " keeps no arrival profile: " + node.node.registry().profiles());
+            }
+            assertEquals(1, a.node.shells().stream().filter(shell -> shell.profile().equals(COUNTER)).count());
+            assertTrue(b.node.shells().stream().noneMatch(shell -> shell.profile().equals(COUNTER)));
+
+            // A to B, then B on to C: A follows the component to C and no longer needs B.
+            Management.migrate(a.node, "mig-a", COUNTER, "mig-b").get(30, TimeUnit.SECONDS);
+            Management.migrate(a.node, "mig-b", COUNTER, "mig-c").get(30, TimeUnit.SECONDS);
+            Await.until("A routes the counter to C, not through B", () ->
+                    a.node.registry().resolve(COUNTER) instanceof Endpoint.Remote remote
+                            && remote.route().isServedBy("mig-c") && !remote.route().isServedBy("mig-b"));
+            b.close();
+            long sent = stream.sent();
+            for (long i = sent; i < sent + 20; i++) {
+                a.node.send(COUNTER, new example.counter.Seq(i), SeqStream.QOS);
+            }
+            Await.until("20 more reports", () -> stream.reports.size() == sent + 20);
+            List<example.counter.Counted> handled = stream.handled();
+            assertEquals(sent + 20, handled.getLast().count(), "the count went on at C: " + handled.getLast());
+            assertEquals("mig-c", stream.handlers().getLast());
+        }
+    }
+
     /** Starts a migration of the counter from A to B under the stream; the counter must stay at A. */
     private static void assertResumesAtSource(MigrationNode a, MigrationNode b, MigrateRequest request,
                                               ManagementFailure.Reason reason, String errorPart) throws Exception {

@@ -149,6 +149,12 @@ final class RecordingKernel implements Kernel {
             }
 
             @Override
+            public boolean replaceRemote(Profile profile, RemoteRoute expected, RemoteRoute replacement) {
+                return endpoints.get(profile) instanceof Endpoint.Remote remote && remote.route() == expected
+                        && endpoints.replace(profile, remote, new Endpoint.Remote(replacement));
+            }
+
+            @Override
             public void addListener(Listener listener) {
                 throw new UnsupportedOperationException("the Notifier does not listen to the registry");
             }

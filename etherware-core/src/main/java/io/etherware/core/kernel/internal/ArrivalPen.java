@@ -12,7 +12,9 @@ import java.util.concurrent.atomic.AtomicLong;
  * other messages for it are <em>penned</em> (their jobs sort after every forwarded one of the same
  * urgency, see {@link KernelCore#PEN_OFFSET}), because whatever comes through the source was sent
  * before what comes here directly. The admission waits for the number of messages the source
- * says it forwarded, since its request may overtake some of them on the way.
+ * says it forwarded, since its request may overtake some of them on the way; the source sends to
+ * the component's own profile from that count on, so at the admission the arrival profile has
+ * served its turn and is unregistered.
  *
  * <p>Thread-safety: senders call {@link #pens} and {@link #arrived}, the component's owner
  * {@link #leftPenned}, the management service {@link #admitAfter}; all lock-free.
@@ -31,6 +33,11 @@ final class ArrivalPen {
     ArrivalPen(Profile arrival, Runnable release) {
         this.arrival = arrival;
         this.release = release;
+    }
+
+    /** The profile the source forwards to. */
+    Profile arrival() {
+        return arrival;
     }
 
     /** Whether {@code message} comes to the arrival profile. */

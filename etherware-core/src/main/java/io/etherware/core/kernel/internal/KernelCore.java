@@ -85,8 +85,10 @@ public final class KernelCore implements Kernel, JobRunner {
     private final ConcurrentHashMap<String, LongAdder> inboundBytes = new ConcurrentHashMap<>();
     /** Registered components in registration order. */
     private final List<LocalShell> shells = new CopyOnWriteArrayList<>();
-    /** Every component ever added, for the counters. */
+    /** Every component added and not yet removed or moved away, for the counters. */
     private final List<LocalShell> everAdded = new CopyOnWriteArrayList<>();
+    /** The counters of the components removed or moved away (handled, failed, restarts); guarded by itself. */
+    private final long[] retiredCounts = new long[3];
     private final LongAdder undeliverable = new LongAdder();
     /** Destinations whose route refused a message, logged once each (at most {@link #MAX_ROUTE_REFUSALS_LOGGED}). */
     private final Set<Profile> routeRefusalsLogged = ConcurrentHashMap.newKeySet();
@@ -393,13 +395,18 @@ public final class KernelCore implements Kernel, JobRunner {
 
     @Override
     public NodeStats stats() {
-        long handled = 0;
-        long failed = 0;
-        long restarts = 0;
-        for (LocalShell shell : everAdded) {
-            handled += shell.handledCount();
-            failed += shell.failedCount();
-            restarts += shell.restartCount();
+        long handled;
+        long failed;
+        long restarts;
+        synchronized (retiredCounts) {
+            handled = retiredCounts[0];
+            failed = retiredCounts[1];
+            restarts = retiredCounts[2];
+            for (LocalShell shell : everAdded) {
+                handled += shell.handledCount();
+                failed += shell.failedCount();
+                restarts += shell.restartCount();
+            }
         }
         return new NodeStats(nodeId, jobSequence.get(), handled, failed, restarts, undeliverable.sum(), discarded.sum(),
                 requests.timeoutCount(), requests.lateReplyCount(), escalations.sum(), resets.sum());
@@ -515,8 +522,10 @@ public final class KernelCore implements Kernel, JobRunner {
                         + " only at a running node");
             }
             shell = new LocalShell(this, profile, factory, config.supervision());
-            // Held before it is reachable: nothing reaches it unheld.
-            shell.arriveHeld(arrival, onFirstHandling);
+            // Held before it is reachable: nothing reaches it unheld. Once admitted, every message
+            // the source forwarded to the arrival profile is in: the profile has served its turn.
+            LocalShell arrived = shell;
+            shell.arriveHeld(arrival, onFirstHandling, () -> registry.unregister(arrival, arrived.endpoint()));
             registry.register(arrival, shell.endpoint());
             try {
                 registry.register(profile, shell.endpoint()); // displaces the route to the source
@@ -582,20 +591,40 @@ public final class KernelCore implements Kernel, JobRunner {
                 throw new IllegalArgumentException("no local component has profile '" + profile + "'");
             }
             shell = (LocalShell) local.shell();
-            // By its profile, or by the arrival profile of a migrated component: both go.
+            // By its profile, or by the arrival profile of a migrated component: all go.
             registry.unregister(profile, endpoint);
             registry.unregister(shell.profile(), endpoint);
+            ArrivalPen pen = shell.pen();
+            if (pen != null) {
+                registry.unregister(pen.arrival(), endpoint);
+            }
             shells.remove(shell);
         }
         if (shell.cancelIfUnstarted()) {
+            retire(shell);
             return CompletableFuture.completedFuture(null);
         }
         var stopped = new CompletableFuture<Void>();
         shell.atBoundary(() -> {
             shell.remove();
+            retire(shell);
             stopped.complete(null);
         });
         return stopped;
+    }
+
+    /**
+     * A component was removed or moved away: keeps its counters in the node's totals and lets it
+     * go, so that a node through which components keep moving does not keep every shell.
+     */
+    private void retire(LocalShell shell) {
+        synchronized (retiredCounts) {
+            if (everAdded.remove(shell)) {
+                retiredCounts[0] += shell.handledCount();
+                retiredCounts[1] += shell.failedCount();
+                retiredCounts[2] += shell.restartCount();
+            }
+        }
     }
 
     @Override
@@ -614,7 +643,7 @@ public final class KernelCore implements Kernel, JobRunner {
                 relocated.completeExceptionally(e);
             }
         });
-        return relocated;
+        return relocated.thenRun(() -> retire(shell));
     }
 
     @Override

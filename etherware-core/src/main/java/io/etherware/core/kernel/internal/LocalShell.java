@@ -291,10 +291,14 @@ public final class LocalShell implements Shell {
     /**
      * Before start, by the thread that adds a migrated component (it owns the gate until start):
      * keep arrivals from the start on, report the first handling to {@code probe}, and pen the
-     * messages that do not come to {@code arrivalProfile} (see {@link ArrivalPen}).
+     * messages that do not come to {@code arrivalProfile} (see {@link ArrivalPen}); at the
+     * admission, release the gate, then run {@code onAdmitted}.
      */
-    void arriveHeld(Profile arrivalProfile, LongConsumer probe) {
-        pen = new ArrivalPen(arrivalProfile, gate::release);
+    void arriveHeld(Profile arrivalProfile, LongConsumer probe, Runnable onAdmitted) {
+        pen = new ArrivalPen(arrivalProfile, () -> {
+            gate.release();
+            onAdmitted.run();
+        });
         gate.hold();
         firstHandlingProbe = probe;
     }

@@ -140,6 +140,14 @@ public final class ProfileTable implements ProfileRegistry {
     }
 
     @Override
+    public synchronized boolean replaceRemote(Profile profile, RemoteRoute expected, RemoteRoute replacement) {
+        Objects.requireNonNull(profile, "profile");
+        Objects.requireNonNull(replacement, "replacement");
+        return table.exact.get(profile) instanceof Endpoint.Remote existing && existing.route() == expected
+                && replace(profile, existing, new Endpoint.Remote(replacement));
+    }
+
+    @Override
     public void addListener(Listener listener) {
         listeners.add(Objects.requireNonNull(listener, "listener"));
     }

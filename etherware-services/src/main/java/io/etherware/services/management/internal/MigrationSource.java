@@ -22,7 +22,6 @@ import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.ExecutionException;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.TimeoutException;
-import java.util.concurrent.atomic.LongAdder;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -146,14 +145,18 @@ public final class MigrationSource {
                     + e, e);
         }
         long relocatedNs = kernel.clock().nanoTime();
-        long heldMessages = route.forwarded.sum();
+        long heldMessages = route.forwardedSoFar();
 
-        // Committed: the component lives at the target. The hand-over releases it there.
+        // Committed: the component lives at the target. The hand-over releases it there once the
+        // messages sent to the arrival profile are in; from the seal on, they go to the profile,
+        // and once the target's announcement is here, along the route that follows it.
+        long forwarded = route.seal();
+        network.followAnnouncements(profile, route);
         long firstEpochNs = -1;
         String implementation = className;
         try {
             MigrationStepDone done = step(toNode, new MigrationStep(Phase.HANDOVER, profile, kernel.nodeId(), arrival,
-                    null, null, null, null, route.forwarded.sum()), stepNs + config.firstMessageWaitNs());
+                    null, null, null, null, forwarded), stepNs + config.firstMessageWaitNs());
             firstEpochNs = done.firstHandlingEpochNs();
             implementation = done.implementation();
         } catch (LoadFailure e) {
@@ -205,14 +208,19 @@ public final class MigrationSource {
     }
 
     /**
-     * The route to the target for the moved profile: each message goes to the arrival profile
-     * there (so it is kept with the held ones, ahead of what the target's own senders send after
-     * the hand-over); counts what passes (the held messages, during the relocation).
+     * The route to the target for the moved profile. Until {@link #seal} each message goes to the
+     * arrival profile there (so it is kept with the held ones, ahead of what the target's own
+     * senders send), counted; from then on to the profile itself. The count at the seal is the
+     * hand-over's: once that many have arrived, the target admits the component and drops the
+     * arrival profile, which nothing addresses any more.
+     *
+     * <p>Thread-safety: any sender; before the seal, deliveries are serialized with it.
      */
     private static final class ArrivalRoute implements RemoteRoute {
         private final RemoteRoute to;
         private final Profile arrival;
-        final LongAdder forwarded = new LongAdder();
+        private volatile boolean sealed;
+        private long forwarded; // guarded by this
 
         ArrivalRoute(RemoteRoute to, Profile arrival) {
             this.to = to;
@@ -221,8 +229,31 @@ public final class MigrationSource {
 
         @Override
         public void deliver(Message message) {
-            to.deliver(message.withProfile(arrival));
-            forwarded.increment();
+            if (!sealed) {
+                synchronized (this) {
+                    if (!sealed) {
+                        to.deliver(message.withProfile(arrival));
+                        forwarded++;
+                        return;
+                    }
+                }
+            }
+            to.deliver(message);
+        }
+
+        /** Ends the forwarding to the arrival profile; returns how many messages went there. */
+        synchronized long seal() {
+            sealed = true;
+            return forwarded;
+        }
+
+        synchronized long forwardedSoFar() {
+            return forwarded;
+        }
+
+        @Override
+        public boolean isServedBy(String nodeId) {
+            return to.isServedBy(nodeId);
         }
 
         @Override

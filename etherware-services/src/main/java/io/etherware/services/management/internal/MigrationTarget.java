@@ -182,9 +182,12 @@ public final class MigrationTarget {
 
     private void admitAnyway(Profile profile, Profile arrivalProfile) {
         try {
-            kernel.admit(arrivalProfile, 0); // does nothing if admitted already
+            kernel.admit(arrivalProfile, 0);
+            log.warn("node {}: '{}' admitted after a step's time without every forwarded message (one was refused"
+                    + " on the way?)", kernel.nodeId(), profile);
         } catch (RuntimeException e) {
-            log.debug("node {}: '{}' is gone before its late admission: {}", kernel.nodeId(), profile, e.toString());
+            // The usual case: admitted already, and its arrival profile is gone; or removed meanwhile.
+            log.trace("node {}: '{}' needs no late admission: {}", kernel.nodeId(), profile, e.toString());
         }
     }
 

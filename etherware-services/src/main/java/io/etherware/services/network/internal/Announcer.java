@@ -67,15 +67,15 @@ final class Announcer implements ProfileRegistry.Listener {
 
     @Override
     public void onChanged(Profile profile, Endpoint before, Endpoint after) {
+        boolean wasLocal = hosts(profile, before);
+        boolean isLocal = hosts(profile, after);
         if (before instanceof Endpoint.Remote was && was.route() instanceof RouteTable.ProfileRoute
                 && !(after instanceof Endpoint.Remote now && now.route() == was.route())
-                || before instanceof Endpoint.Local && after == null) {
+                || wasLocal && after == null) {
             // A route of ours was displaced, or a local component left while a peer may announce
             // its profile: the control thread settles it.
             toReconcile.add(profile);
         }
-        boolean wasLocal = before instanceof Endpoint.Local;
-        boolean isLocal = after instanceof Endpoint.Local;
         if (wasLocal == isLocal) {
             return;
         }
@@ -115,9 +115,18 @@ final class Announcer implements ProfileRegistry.Listener {
 
     private boolean isLocal(Profile profile) {
         try {
-            return kernel.registry().resolve(profile) instanceof Endpoint.Local;
+            return hosts(profile, kernel.registry().resolve(profile));
         } catch (ProfileResolutionException e) {
             return false;
         }
+    }
+
+    /**
+     * Whether {@code endpoint} is a local component registered under its own profile. A second
+     * profile of a local component (a migration's arrival profile, which only its source sends
+     * to, through a route to this node) is not announced.
+     */
+    private static boolean hosts(Profile profile, Endpoint endpoint) {
+        return endpoint instanceof Endpoint.Local local && local.shell().profile().equals(profile);
     }
 }

@@ -398,6 +398,11 @@ public final class Engine {
         };
     }
 
+    /** See {@link RouteTable#adopt}. */
+    public void adoptRoute(Profile profile, RemoteRoute route) {
+        routes.adopt(profile, route);
+    }
+
     // ---------------------------------------------------------------- the control thread
 
     private void tick() {

@@ -45,6 +45,8 @@ final class RouteTable {
     private final LongAdder refused;
     private final Map<Profile, ProfileRoute> routes = new HashMap<>();
     private final Map<String, Set<Profile>> byPeer = new HashMap<>();
+    /** Routes a migration registered, to be replaced by the announced route of their profile. */
+    private final Map<Profile, RemoteRoute> provisional = new HashMap<>();
     private long refusalsLogged;
 
     /**
@@ -158,6 +160,21 @@ final class RouteTable {
         }
     }
 
+    /**
+     * {@code profile} is registered to {@code route}, which a migration away from this node left
+     * (it leads to the target node): replace it with the route that follows the nodes announcing
+     * the profile, now if one does, else when one does. In one step, so no send finds the profile
+     * unregistered; both routes queue for the target on the same streams, so no message overtakes
+     * another of its sender.
+     */
+    synchronized void adopt(Profile profile, RemoteRoute route) {
+        provisional.put(profile, route);
+        ProfileRoute announced = routes.get(profile);
+        if (announced != null) {
+            sync(announced);
+        }
+    }
+
     /** The profiles routed to {@code nodeId}. */
     synchronized Set<Profile> hostedBy(String nodeId) {
         Set<Profile> announced = byPeer.getOrDefault(nodeId, Set.of());
@@ -191,6 +208,11 @@ final class RouteTable {
             route.owner = first;
         }
 
+        RemoteRoute left = route.registered ? null : provisional.remove(route.profile);
+        if (left != null && registry.replaceRemote(route.profile, left, route)) {
+            route.registered = true;
+            route.shadowLogged = false;
+        }
         if (!route.registered) {
             try {
                 registry.registerRemote(route.profile, route);
