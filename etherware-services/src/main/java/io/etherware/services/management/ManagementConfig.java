@@ -36,6 +36,10 @@ import java.util.Set;
  *   <li>{@code handoverWait} 5 s: how long a target keeps a migrated component held, waiting for the
  *       source's hand-over, before it gives the migration up and removes the component (the source
  *       has then resumed it after its own step timeout);</li>
+ *   <li>{@code maxQueuedOperations} 8: how many upgrades and migrations away from this node may
+ *       wait behind the one in progress (they run one at a time, in arrival order), and how many
+ *       migration PREPARE steps into it may wait behind the one being loaded; a request beyond
+ *       that is refused at once with {@link ManagementFailure.Reason#BUSY};</li>
  *   <li>{@code classLoader} the system class loader: where class-path implementations come from,
  *       and the parent of the jars' class loaders.</li>
  * </ul>
@@ -85,11 +89,14 @@ import java.util.Set;
  * @param handoverWaitNs       how long a migration's target waits for the hand-over
  * @param settleWaitNs         how long a migration's source waits, before it holds the component,
  *                             for the outcomes of the component's own requests in flight
+ * @param maxQueuedOperations  how many operations may wait behind the one in progress (each of
+ *                             the two queues: operations of this node, PREPARE steps into it)
  * @param classLoader          the node's class loader for implementations
  */
 public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trustedSigners, List<AccessRule> accessList,
                                boolean allowUnauthenticatedLinks, long firstMessageWaitNs, long migrationStepTimeoutNs,
-                               long handoverWaitNs, long settleWaitNs, ClassLoader classLoader) {
+                               long handoverWaitNs, long settleWaitNs, int maxQueuedOperations,
+                               ClassLoader classLoader) {
 
     /**
      * Copies the lists and checks the fields.
@@ -100,7 +107,8 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
      *                                  {@code migrationStepTimeoutNs} &lt;= 0, or
      *                                  {@code handoverWaitNs} &lt;= {@code migrationStepTimeoutNs},
      *                                  or {@code settleWaitNs} is negative or not below
-     *                                  {@code migrationStepTimeoutNs}
+     *                                  {@code migrationStepTimeoutNs}, or
+     *                                  {@code maxQueuedOperations} &lt; 0
      */
     public ManagementConfig {
         allowlist = List.copyOf(allowlist);
@@ -126,6 +134,10 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
         if (handoverWaitNs <= migrationStepTimeoutNs) {
             throw new IllegalArgumentException("handoverWaitNs=" + handoverWaitNs + " must be > migrationStepTimeoutNs="
                     + migrationStepTimeoutNs + ": a target must not give up a migration its source still waits for");
+        }
+        if (maxQueuedOperations < 0) {
+            throw new IllegalArgumentException("maxQueuedOperations=" + maxQueuedOperations
+                    + " must be >= 0 (0 refuses any operation while one is in progress)");
         }
         Objects.requireNonNull(classLoader, "classLoader=null: leave the default (the system class loader)");
     }
@@ -158,6 +170,7 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
         private long migrationStepTimeoutNs = Duration.ofSeconds(2).toNanos();
         private long handoverWaitNs = Duration.ofSeconds(5).toNanos();
         private long settleWaitNs = Duration.ofMillis(100).toNanos();
+        private int maxQueuedOperations = 8;
         private ClassLoader classLoader = ClassLoader.getSystemClassLoader();
 
         Builder() {
@@ -370,6 +383,27 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
         }
 
         /**
+         * How many management operations may wait while one is in progress. A node runs its
+         * upgrades and its migrations away one at a time, in the order they arrived (a migration
+         * blocks for its target's answers), and loads the classes of migrations into it one at a
+         * time on a thread of their own (so two nodes migrating to each other do not wait for each
+         * other). Beyond this many waiting in either queue, a request is answered at once with
+         * {@link ManagementFailure.Reason#BUSY}, naming the node and the bound: ask again later.
+         * Default 8.
+         *
+         * @param value &gt;= 0; 0 refuses any request while one is in progress
+         * @return this builder
+         * @throws IllegalArgumentException if {@code value} is negative
+         */
+        public Builder maxQueuedOperations(int value) {
+            if (value < 0) {
+                throw new IllegalArgumentException("maxQueuedOperations=" + value + " must be >= 0");
+            }
+            maxQueuedOperations = value;
+            return this;
+        }
+
+        /**
          * Where class-path implementations come from, and the parent of jar class loaders.
          * Default: the system class loader.
          *
@@ -391,7 +425,8 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
          */
         public ManagementConfig build() {
             return new ManagementConfig(allowlist, trustedSigners, accessList, allowUnauthenticatedLinks,
-                    firstMessageWaitNs, migrationStepTimeoutNs, handoverWaitNs, settleWaitNs, classLoader);
+                    firstMessageWaitNs, migrationStepTimeoutNs, handoverWaitNs, settleWaitNs, maxQueuedOperations,
+                    classLoader);
         }
     }
 }

@@ -42,6 +42,11 @@ public record ManagementFailure(String operation, Profile target, Reason reason,
         BAD_REQUEST,
         /** No local component matches the profile (or it is hosted on another node). */
         UNKNOWN_COMPONENT,
+        /**
+         * The node's management service has as many operations waiting as it queues
+         * ({@link ManagementConfig.Builder#maxQueuedOperations}): nothing was done; ask again later.
+         */
+        BUSY,
         /** The component is not running (failed, stopped), so it cannot be upgraded. */
         NOT_RUNNING,
         /** The jar is outside the allowlisted directories. */

@@ -26,13 +26,16 @@ import java.util.Objects;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.CompletionException;
 import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.ArrayBlockingQueue;
 import java.util.concurrent.Executor;
 import java.util.concurrent.ExecutorService;
-import java.util.concurrent.Executors;
 import java.util.concurrent.RejectedExecutionException;
+import java.util.concurrent.SynchronousQueue;
+import java.util.concurrent.ThreadPoolExecutor;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicReference;
 import java.util.concurrent.atomic.LongAdder;
+import java.util.function.BiConsumer;
 import org.slf4j.Logger;
 
 /**
@@ -68,14 +71,19 @@ import org.slf4j.Logger;
  *
  * <p>Threading: {@link #onMessage} runs on a dispatcher and never blocks or loads code there.
  * Loading and answering run on one worker thread per service, so upgrades are loaded one at a
- * time. The swap runs where the kernel puts it: on the service's dispatcher if the component is
+ * time; requests queue for it in arrival order, at most
+ * {@link ManagementConfig#maxQueuedOperations()} waiting, and one beyond that is answered at once
+ * with {@link Reason#BUSY} (counted, {@link #busyCount()}). The swap runs where the kernel puts it: on the service's dispatcher if the component is
  * between messages, else on the component's dispatcher right after its current message. Either
  * way the new logic's {@code restore} and {@code onStart} run on a dispatcher and should be quick.
  *
  * <h2>A migration</h2>
  * The steps and the ordering argument are in the package documentation. At the source, the whole
  * migration runs on the worker, which waits for the target's answers (so a node runs one management
- * operation at a time). At the target, PREPARE (loading, constructing) runs on the worker; INSTALL
+ * operation at a time; the next wait in the same queue). At the target, PREPARE (loading,
+ * constructing) runs on a second thread of the service, with a queue of the same bound, and the
+ * answers that wait for a first message are assembled there too: two nodes migrating components
+ * to each other at once each serve the other's steps while their own migration waits; INSTALL
  * ({@code restore}, {@code onStart}, registration) and HANDOVER run on the service's dispatcher,
  * because they are on the migration gap's path. Migrating from this node needs the
  * {@link NetworkMessenger} given to {@link #install(EtherwareNode, ManagementConfig, NetworkMessenger)}.
@@ -93,7 +101,10 @@ public final class ManagementService implements Component {
     /** The jar class loader behind each component upgraded from a jar; closed when replaced. */
     private final Map<Profile, URLClassLoader> jarLoaders;
     private final Counters counters;
-    private ExecutorService worker;
+    /** Upgrades' loading and migrations away from this node: one at a time, in arrival order. */
+    private ThreadPoolExecutor worker;
+    /** PREPARE steps of migrations into this node: apart, so two nodes migrating to each other go on. */
+    private ThreadPoolExecutor steps;
     private Executor continuations;
     private MigrationSource migrationSource;
     private MigrationTarget migrationTarget;
@@ -171,8 +182,9 @@ public final class ManagementService implements Component {
     }
 
     /**
-     * Starts the service's worker thread (one per service, for loading and answering). Called by
-     * the kernel when the service starts or restarts.
+     * Starts the service's two threads (the worker, for upgrades' loading and answering and for
+     * migrations away; and one for the PREPARE steps of migrations into this node). Called by the
+     * kernel when the service starts or restarts.
      *
      * @param context the service's context; its logger and replies are used from here on
      */
@@ -180,24 +192,61 @@ public final class ManagementService implements Component {
     public void onStart(ComponentContext context) {
         this.context = context;
         this.log = context.logger();
-        this.worker = Executors.newSingleThreadExecutor(Thread.ofPlatform().daemon()
-                .name("etherware-management-" + kernel.nodeId()).factory());
-        ExecutorService own = worker;
-        // After onStop, an upgrade in flight still answers: on the thread that completes it.
-        this.continuations = task -> {
+        this.worker = boundedThread("etherware-management-" + kernel.nodeId());
+        this.steps = boundedThread("etherware-management-steps-" + kernel.nodeId());
+        this.continuations = inlineWhenRefused(worker);
+        this.migrationSource = new MigrationSource(kernel, config, network, access);
+        // The answers of steps into this node must not wait for this node's own migration away,
+        // which may be waiting for the other node's answers.
+        this.migrationTarget = new MigrationTarget(kernel, config, loader, inlineWhenRefused(steps), this::installed);
+    }
+
+    /** Runs a task on {@code pool}, or where it completes if the pool is full or stopped. */
+    private static Executor inlineWhenRefused(ExecutorService pool) {
+        // After onStop, an operation in flight still answers: on the thread that completes it.
+        return task -> {
             try {
-                own.execute(task);
-            } catch (RejectedExecutionException stopped) {
+                pool.execute(task);
+            } catch (RejectedExecutionException refused) {
                 task.run();
             }
         };
-        this.migrationSource = new MigrationSource(kernel, config, network, access);
-        this.migrationTarget = new MigrationTarget(kernel, config, loader, continuations, this::installed);
+    }
+
+    /** One thread, with room for {@link ManagementConfig#maxQueuedOperations()} tasks waiting. */
+    private ThreadPoolExecutor boundedThread(String name) {
+        int room = config.maxQueuedOperations();
+        return new ThreadPoolExecutor(1, 1, 0, TimeUnit.MILLISECONDS,
+                room == 0 ? new SynchronousQueue<>() : new ArrayBlockingQueue<>(room),
+                Thread.ofPlatform().daemon().name(name).factory());
+    }
+
+    /**
+     * Hands {@code task} to {@code pool}; if it cannot take it, answers the request through
+     * {@code failure} (BUSY with the bound, or SERVICE_FAILED if the service stops) and returns false.
+     */
+    private boolean submit(ThreadPoolExecutor pool, Runnable task, BiConsumer<Reason, String> failure) {
+        try {
+            pool.execute(task);
+            return true;
+        } catch (RejectedExecutionException e) {
+            if (pool.isShutdown()) {
+                failure.accept(Reason.SERVICE_FAILED, "the management service of node '" + kernel.nodeId()
+                        + "' is stopping");
+            } else {
+                counters.busy.increment();
+                failure.accept(Reason.BUSY, "the management service of node '" + kernel.nodeId() + "' has "
+                        + config.maxQueuedOperations() + " operations waiting behind the one in progress"
+                        + " (maxQueuedOperations); nothing was done: ask again later");
+            }
+            return false;
+        }
     }
 
     @Override
     public void onStop() {
         worker.shutdown();
+        steps.shutdown();
     }
 
     /**
@@ -255,12 +304,8 @@ public final class ManagementService implements Component {
         if (refused(message, Operation.UPGRADE, UPGRADE, request.target())) {
             return;
         }
-        try {
-            worker.execute(() -> upgrade(message, request, receivedNs));
-        } catch (RejectedExecutionException e) {
-            fail(message, request, Reason.SERVICE_FAILED, "the management service of node '" + kernel.nodeId()
-                    + "' is stopping");
-        }
+        submit(worker, () -> upgrade(message, request, receivedNs),
+                (reason, error) -> fail(message, request, reason, error));
     }
 
     /**
@@ -380,12 +425,8 @@ public final class ManagementService implements Component {
         if (refused(message, Operation.MIGRATE, MIGRATE, request.target())) {
             return;
         }
-        try {
-            worker.execute(() -> migrate(message, request, receivedNs));
-        } catch (RejectedExecutionException e) {
-            failMigration(message, request.target(), Reason.SERVICE_FAILED, "the management service of node '"
-                    + kernel.nodeId() + "' is stopping");
-        }
+        submit(worker, () -> migrate(message, request, receivedNs),
+                (reason, error) -> failMigration(message, request.target(), reason, error));
     }
 
     /** Worker thread: the whole migration, blocking for the target's answers. */
@@ -444,20 +485,15 @@ public final class ManagementService implements Component {
             }
             return;
         }
-        try {
-            worker.execute(() -> {
-                try {
-                    context.reply(message, migrationTarget.prepare(step));
-                } catch (LoadFailure e) {
-                    failMigration(message, step.target(), e.reason(), e.getMessage());
-                } catch (RuntimeException e) {
-                    failMigration(message, step.target(), Reason.SERVICE_FAILED, operation + " failed: " + e);
-                }
-            });
-        } catch (RejectedExecutionException e) {
-            failMigration(message, step.target(), Reason.SERVICE_FAILED, "the management service of node '"
-                    + kernel.nodeId() + "' is stopping");
-        }
+        submit(steps, () -> {
+            try {
+                context.reply(message, migrationTarget.prepare(step));
+            } catch (LoadFailure e) {
+                failMigration(message, step.target(), e.reason(), e.getMessage());
+            } catch (RuntimeException e) {
+                failMigration(message, step.target(), Reason.SERVICE_FAILED, operation + " failed: " + e);
+            }
+        }, (reason, error) -> failMigration(message, step.target(), reason, error));
     }
 
     /**
@@ -570,6 +606,16 @@ public final class ManagementService implements Component {
         return counters.refused.sum();
     }
 
+    /**
+     * Requests refused with {@link Reason#BUSY} because {@link ManagementConfig#maxQueuedOperations()}
+     * were waiting (also counted in {@link #failedCount()}). Any thread.
+     *
+     * @return the count so far (the instances that restarts make after {@link #install} share it)
+     */
+    public long busyCount() {
+        return counters.busy.sum();
+    }
+
     /** The counters, shared by the instances that restarts make. */
     private static final class Counters {
         final LongAdder upgraded = new LongAdder();
@@ -577,5 +623,6 @@ public final class ManagementService implements Component {
         final LongAdder migratedIn = new LongAdder();
         final LongAdder failed = new LongAdder();
         final LongAdder refused = new LongAdder();
+        final LongAdder busy = new LongAdder();
     }
 }

@@ -73,9 +73,18 @@
  *   <li><b>relocate</b>: the source stops the component and forwards, to the arrival profile, the
  *       kept messages, then those still queued for it at its dispatchers, then switches its
  *       registry to the route ({@link io.etherware.core.kernel.Kernel#relocateAsync}).</li>
- *   <li><b>hand-over</b>: the HANDOVER step says how many messages were forwarded; once they are in,
- *       the target releases the component ({@link io.etherware.core.kernel.Kernel#admit}). Its
- *       answer carries the start of the first message handled there, for the gap.</li>
+ *   <li><b>hand-over</b>: the source seals its route: what it forwards from now on goes to the
+ *       profile itself, and the HANDOVER step says how many messages went to the arrival profile;
+ *       once they are in, the target releases the component
+ *       ({@link io.etherware.core.kernel.Kernel#admit}) and unregisters the arrival profile, which
+ *       nothing addresses any more. Its answer carries the start of the first message handled
+ *       there, for the gap. The source's registry keeps the sealed route only until the target's
+ *       announcement of the profile is there, then routes the profile as any announced one
+ *       ({@link io.etherware.services.network.NetworkMessenger#followAnnouncements}), so it
+ *       follows the component if it moves on, and nothing of the migration stays behind on
+ *       either node: no arrival profile, no stopped shell, no pinned route (tested over twenty
+ *       moves, and a move on to a third node after which the first node no longer needs the
+ *       second).</li>
  * </ol>
  * Any failure before the relocation (target unreachable or dead, a step unanswered in time, class
  * missing, {@code restore} or {@code onStart} throwing at the target, the snapshot throwing)
@@ -107,6 +116,16 @@
  * sender, as any message on that link. A component that always has a request in flight (it asks
  * again from each reply) is never quiescent: it moves after the settle wait, and the reply then in
  * flight is lost to it.
+ *
+ * <h3>Requests that meet</h3>
+ * A node runs its upgrades and its migrations away one at a time, in the order they arrived; at
+ * most {@link io.etherware.services.management.ManagementConfig#maxQueuedOperations()} (8 by
+ * default) wait behind the one in progress, and a request beyond that is answered at once with
+ * {@link io.etherware.services.management.ManagementFailure.Reason#BUSY} (nothing was done; ask
+ * again later). A request that waited is judged when its turn comes: a component that moved away
+ * meanwhile gets {@code UNKNOWN_COMPONENT}. The steps of migrations <em>into</em> a node have a
+ * thread and a queue of their own, so two nodes migrating components to each other at the same
+ * time each serve the other's steps while their own migration waits (tested).
  *
  * <h3>Ticks</h3>
  * A Notifier subscription stays with the Notifier it was made with: Ticks are messages to the
