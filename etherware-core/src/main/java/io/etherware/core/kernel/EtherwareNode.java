@@ -416,6 +416,12 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
     }
 
     @Override
+    public CompletableFuture<SwapTimings> swapAsync(Profile profile, Supplier<? extends Component> factory,
+                                                    LongConsumer onFirstHandling, Duration settleWait) {
+        return core.swapAsync(profile, factory, onFirstHandling, settleWait);
+    }
+
+    @Override
     public Shell addHeld(Profile profile, Profile arrival, Supplier<? extends Component> factory,
                          LongConsumer onFirstHandling) {
         return core.addHeld(profile, arrival, factory, onFirstHandling);

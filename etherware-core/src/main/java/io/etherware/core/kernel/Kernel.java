@@ -166,6 +166,33 @@ public interface Kernel {
     }
 
     /**
+     * {@link #swapAsync(Profile, Supplier, LongConsumer)} at a boundary where the component is
+     * quiescent: it waits for no outcome of a request of its own (Kramer and Magee's passive
+     * state, as {@link #holdAsync(Profile, Duration)} waits for it), so that the outcome of a
+     * request in flight reaches the callback of the logic that made it, not a replaced one. One
+     * that still waits after {@code settleWait} is swapped at its next boundary anyway.
+     *
+     * <p>The default implementation swaps at once.
+     *
+     * @param profile         the exact profile of a local component, or a query matching only it
+     * @param factory         makes the new logic now and for the component's later restarts
+     * @param onFirstHandling receives the start time of the new logic's first handling
+     * @param settleWait      how long to wait for the outcomes of its requests; zero swaps at the
+     *                        next boundary
+     * @return a future of the pause's timings, failing as {@link #swapAsync(Profile, Supplier)}'s
+     * @throws ProfileResolutionException if the profile does not resolve
+     * @throws IllegalArgumentException   if it resolves to a component of another node, or
+     *                                    {@code settleWait} is negative
+     */
+    default CompletableFuture<SwapTimings> swapAsync(Profile profile, Supplier<? extends Component> factory,
+                                                     LongConsumer onFirstHandling, Duration settleWait) {
+        if (Objects.requireNonNull(settleWait, "settleWait").isNegative()) {
+            throw new IllegalArgumentException("settleWait=" + settleWait + " must not be negative");
+        }
+        return swapAsync(profile, factory, onFirstHandling);
+    }
+
+    /**
      * The state of a local component at its next message boundary ({@link Component#snapshot()},
      * possibly null). On a held component it is the state that a migration ships.
      *

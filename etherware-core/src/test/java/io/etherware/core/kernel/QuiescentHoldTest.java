@@ -23,7 +23,9 @@ import org.junit.jupiter.api.Test;
 /**
  * A hold that waits for the component to be quiescent ({@link Kernel#holdAsync(Profile, Duration)}):
  * the outcomes of its requests in flight reach it before it is held, so a migration that holds it
- * so leaves no reply behind; a reply that never comes holds it anyway at the end of the wait.
+ * so leaves no reply behind; a reply that never comes holds it anyway at the end of the wait. A
+ * swap waits the same way ({@link Kernel#swapAsync(Profile, java.util.function.Supplier,
+ * java.util.function.LongConsumer, Duration)}).
  */
 class QuiescentHoldTest {
 
@@ -113,6 +115,27 @@ class QuiescentHoldTest {
             assertTrue(held.isDone(), "an idle component awaiting nothing is held on the calling thread");
             node.release(REQUESTER);
             assertThrows(IllegalArgumentException.class, () -> node.holdAsync(REQUESTER, Duration.ofMillis(-1)));
+        }
+    }
+
+    @Test
+    void shouldSwapOnlyOnceTheReplyInFlightHasReachedTheOldLogic() throws Exception {
+        try (var node = requestInFlight("quiescent-swap")) {
+            var newLogicSaw = new CopyOnWriteArrayList<Long>();
+            CompletableFuture<SwapTimings> swapped = node.swapAsync(REQUESTER, () -> (message, context) ->
+                    newLogicSaw.add(message.contentsAs(Num.class).value()), ns -> { }, Duration.ofSeconds(30));
+            node.send(REQUESTER, new Num(2)); // the old logic runs on while its reply is awaited
+            Await.until("a message while the swap waits is handled by the old logic", () -> handled.size() == 2);
+            assertFalse(swapped.isDone(), "swapped while a reply was in flight");
+
+            answer.countDown();
+            swapped.get(30, TimeUnit.SECONDS);
+            assertEquals(List.of("reply 1", "reply 2"), outcomes.stream().sorted().toList(),
+                    "both replies reached the old logic's callbacks");
+            node.send(REQUESTER, new Num(3));
+            Await.until("the new logic handles what comes next", () -> newLogicSaw.equals(List.of(3L)));
+            assertThrows(IllegalArgumentException.class, () -> node.swapAsync(REQUESTER, () -> (message, context) -> { },
+                    ns -> { }, Duration.ofMillis(-1)));
         }
     }
 }

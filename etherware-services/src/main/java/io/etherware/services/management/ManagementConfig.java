@@ -88,7 +88,8 @@ import java.util.Set;
  * @param migrationStepTimeoutNs how long a migration's source waits for each answer of the target
  * @param handoverWaitNs       how long a migration's target waits for the hand-over
  * @param settleWaitNs         how long a migration's source waits, before it holds the component,
- *                             for the outcomes of the component's own requests in flight
+ *                             and an upgrade before it swaps the logic, for the outcomes of the
+ *                             component's own requests in flight
  * @param maxQueuedOperations  how many operations may wait behind the one in progress (each of
  *                             the two queues: operations of this node, PREPARE steps into it)
  * @param classLoader          the node's class loader for implementations
@@ -369,8 +370,10 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
          * message boundary without a request in flight (see
          * {@link io.etherware.core.kernel.Kernel#holdAsync(io.etherware.core.message.Profile, Duration)}).
          * A component still waiting after this long is held anyway, and the outcomes that come
-         * later are handed to the stopped instance at the source, not to the moved one. Default
-         * 100 ms: a few round trips of a control loop. Zero holds at the next boundary.
+         * later are handed to the stopped instance at the source, not to the moved one. An
+         * upgrade waits the same way before it swaps the logic, so that an outcome reaches the
+         * old logic's callback, not a replaced one. Default 100 ms: a few round trips of a
+         * control loop. Zero holds (or swaps) at the next boundary.
          *
          * @param value &gt;= 0, and shorter than the {@link #migrationStepTimeout} (checked by
          *              {@link #build()})

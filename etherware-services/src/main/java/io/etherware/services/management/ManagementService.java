@@ -21,6 +21,7 @@ import io.etherware.services.management.internal.MigrationSource;
 import io.etherware.services.management.internal.MigrationTarget;
 import io.etherware.services.network.NetworkMessenger;
 import java.net.URLClassLoader;
+import java.time.Duration;
 import java.util.Map;
 import java.util.Objects;
 import java.util.concurrent.CompletableFuture;
@@ -367,7 +368,10 @@ public final class ManagementService implements Component {
         CompletableFuture<Long> firstHandling = prepared.firstHandling();
         CompletableFuture<SwapTimings> swap;
         try {
-            swap = kernel.swapAsync(shell.profile(), loaded.factory(), firstHandling::complete);
+            // When no request of the old logic is in flight (within the settle wait): its outcome
+            // then reaches the callback that waits for it instead of a replaced logic.
+            swap = kernel.swapAsync(shell.profile(), loaded.factory(), firstHandling::complete,
+                    Duration.ofNanos(config.settleWaitNs()));
         } catch (RuntimeException e) {
             loaded.discard();
             fail(message, request, Reason.UNKNOWN_COMPONENT, "component '" + shell.profile() + "' went away: " + e);

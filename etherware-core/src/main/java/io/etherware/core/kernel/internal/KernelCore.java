@@ -336,22 +336,9 @@ public final class KernelCore implements Kernel, JobRunner {
 
     @Override
     public CompletableFuture<Void> holdAsync(Profile profile, Duration settleWait) {
-        if (Objects.requireNonNull(settleWait, "settleWait").isNegative()) {
-            throw new IllegalArgumentException("settleWait=" + settleWait + " must not be negative");
-        }
         LocalShell shell = localShell(profile);
         var held = new CompletableFuture<Void>();
-        long waitNs = Durations.toNs("settleWait", settleWait);
-        long deadlineNs = clock.nanoTime() + waitNs;
-        shell.atBoundary(() -> shell.holdWhenSettled(held, deadlineNs, waitNs == 0));
-        if (waitNs > 0) {
-            // Without a boundary after the deadline (an idle component waiting for a lost reply).
-            requests.schedule(() -> {
-                if (!held.isDone()) {
-                    shell.atBoundary(() -> shell.holdWhenSettled(held, deadlineNs, true));
-                }
-            }, waitNs);
-        }
+        whenSettled(shell, () -> shell.hold(held), settleWait, held);
         return held;
     }
 
@@ -378,6 +365,44 @@ public final class KernelCore implements Kernel, JobRunner {
         var swapped = new CompletableFuture<SwapTimings>();
         shell.atBoundary(() -> shell.swap(factory, swapped, onFirstHandling));
         return swapped;
+    }
+
+    @Override
+    public CompletableFuture<SwapTimings> swapAsync(Profile profile, Supplier<? extends Component> factory,
+                                                    LongConsumer onFirstHandling, Duration settleWait) {
+        Objects.requireNonNull(factory, "factory");
+        Objects.requireNonNull(onFirstHandling, "onFirstHandling");
+        LocalShell shell = localShell(profile);
+        var swapped = new CompletableFuture<SwapTimings>();
+        Runnable swap = () -> {
+            if (!swapped.isDone()) {
+                shell.swap(factory, swapped, onFirstHandling);
+            }
+        };
+        whenSettled(shell, swap, settleWait, swapped);
+        return swapped;
+    }
+
+    /**
+     * Runs {@code action} at a boundary of {@code shell} where it awaits no outcome of its
+     * requests, or at the first boundary after {@code settleWait} (a timer makes one if the
+     * component is idle then); {@code done} says when no further try is needed.
+     */
+    private void whenSettled(LocalShell shell, Runnable action, Duration settleWait, CompletableFuture<?> done) {
+        if (Objects.requireNonNull(settleWait, "settleWait").isNegative()) {
+            throw new IllegalArgumentException("settleWait=" + settleWait + " must not be negative");
+        }
+        long waitNs = Durations.toNs("settleWait", settleWait);
+        long deadlineNs = clock.nanoTime() + waitNs;
+        shell.atBoundary(() -> shell.whenSettled(action, deadlineNs, waitNs == 0));
+        if (waitNs > 0) {
+            // Without a boundary after the deadline (an idle component waiting for a lost reply).
+            requests.schedule(() -> {
+                if (!done.isDone()) {
+                    shell.atBoundary(() -> shell.whenSettled(action, deadlineNs, true));
+                }
+            }, waitNs);
+        }
     }
 
     private LocalShell localShell(Profile profile) {

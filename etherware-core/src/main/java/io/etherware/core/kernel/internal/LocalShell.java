@@ -100,10 +100,10 @@ public final class LocalShell implements Shell {
 
     /** Requests of this component whose outcome has not been handed to it yet. */
     private final AtomicInteger awaitingOutcomes = new AtomicInteger();
-    /** A hold that waits for the component to be quiescent ({@link #holdWhenSettled}); owner. */
-    private CompletableFuture<Void> holdWhenSettled;
-    /** When that hold stops waiting for outcomes ({@link System#nanoTime()} scale); owner. */
-    private long holdWhenSettledByNs;
+    /** A hold or swap that waits for the component to be quiescent ({@link #whenSettled}); owner. */
+    private Runnable settledAction;
+    /** When that action stops waiting for outcomes ({@link System#nanoTime()} scale); owner. */
+    private long settledByNs;
 
     private ComponentState lastSnapshot; // owner
     /** When the current logic's last handling ended; for a timed swap's gap. */
@@ -233,8 +233,8 @@ public final class LocalShell implements Shell {
             if (counted) {
                 leftJob(job);
             }
-            if (holdWhenSettled != null) {
-                holdWhenSettled(holdWhenSettled, holdWhenSettledByNs, false);
+            if (settledAction != null) {
+                whenSettled(settledAction, settledByNs, false);
             }
             gate.leave();
         }
@@ -250,23 +250,30 @@ public final class LocalShell implements Shell {
         awaitingOutcomes.decrementAndGet();
     }
 
+    /** Owner, at a boundary: holds now and completes {@code held}, unless it is done already. */
+    void hold(CompletableFuture<Void> held) {
+        if (!held.isDone()) {
+            gate.hold();
+            held.complete(null);
+        }
+    }
+
     /**
-     * Owner, at a boundary: holds now and completes {@code held} if {@code now}, if the component
-     * awaits no outcome of its requests, or if {@code byNs} has passed; else keeps the hold
-     * pending, and every later boundary tries again.
+     * Owner, at a boundary: runs {@code action} now if {@code now}, if the component awaits no
+     * outcome of its requests, or if {@code byNs} has passed; else keeps it pending, and every
+     * later boundary tries again. The action must tolerate running after it is no longer wanted
+     * (the deadline's second try runs it anyway).
      */
-    void holdWhenSettled(CompletableFuture<Void> held, long byNs, boolean now) {
-        if (held.isDone()) {
-            return;
-        }
+    void whenSettled(Runnable action, long byNs, boolean now) {
         if (!now && awaitingOutcomes.get() > 0 && kernel.clock().nanoTime() - byNs < 0) {
-            holdWhenSettled = held;
-            holdWhenSettledByNs = byNs;
+            settledAction = action;
+            settledByNs = byNs;
             return;
         }
-        holdWhenSettled = null;
-        gate.hold();
-        held.complete(null);
+        if (settledAction == action) {
+            settledAction = null;
+        }
+        action.run();
     }
 
     /** A counted job ran or was forwarded. */
