@@ -67,8 +67,13 @@ public record MigrateConfig(long durationNs, long periodNs, long migrateAtNs, do
      * which does not authenticate the peer, so that is allowed explicitly.
      */
     public static ManagementConfig management(String peer) {
+        return managementBuilder(peer).build();
+    }
+
+    /** {@link #management}'s builder, for a node that allows more. */
+    public static ManagementConfig.Builder managementBuilder(String peer) {
         return ManagementConfig.builder().allowRemote(peer, Set.of(AccessRule.Operation.MIGRATE), "controller")
-                .allowUnauthenticatedLinks(true).build();
+                .allowUnauthenticatedLinks(true);
     }
 
     /** A copy with the migration at another time. */

@@ -10,6 +10,7 @@ import io.etherware.examples.scenario.PendulumRig;
 import io.etherware.examples.scenario.PlantProbe;
 import io.etherware.examples.scenario.PlantWiring;
 import io.etherware.examples.scenario.Progress;
+import io.etherware.examples.scenario.Requester;
 import io.etherware.examples.scenario.RunSummary;
 import io.etherware.examples.scenario.RunWatch;
 import io.etherware.examples.scenario.ScenarioEvent;
@@ -54,8 +55,9 @@ import org.slf4j.LoggerFactory;
  * The runtime controller migration of paper Section VI-C2 (Fig. 10 and 12), across two JVMs on
  * loopback. Node 1 (this JVM) holds the DSP board behind its serial link, the DSPProxy and the
  * Notifier; node 2 (a second JVM, {@link ControlNodeCommand}) runs the controller, which reads the
- * angles and commands the torque through the DSPProxy over TCP. At the configured time a requester
- * on node 1 sends node 2 a HIGH management request to move the controller to node 1; node 2
+ * angles and commands the torque through the DSPProxy over TCP. At the configured time the
+ * {@link Requester} component on node 1 sends node 2 a HIGH management request to move the
+ * controller to node 1 (as in Fig. 10); node 2
  * quiesces it at a message boundary and ships its state as XML, node 1 restores it and takes over
  * the profile, and the loop goes on.
  *
@@ -119,6 +121,7 @@ public final class MigrateScenario {
                 PendulumRig rig = new PendulumRig(MigrateConfig.PLANT_NODE, () -> scheduler, initial,
                         new PlantWiring(config.baudRate()))) {
             rig.node().add(CycleReport.RECORDER, CycleReport.recorder(rig.node(), remote));
+            rig.node().add(Requester.PROFILE, Requester::new);
             rig.node().start();
             try (NetworkMessenger net = NetworkMessenger.start(rig.node(), NetworkConfig.builder()
                     .codec(WarmUp.warmedCodec(rig.node())).listen(new InetSocketAddress("127.0.0.1", 0))
@@ -127,7 +130,7 @@ public final class MigrateScenario {
                 ManagementService.install(rig.node(), MigrateConfig.management(MigrateConfig.CONTROL_NODE), net);
                 Notifier notifier = Notifier.install(rig.node(), NotifierConfig.defaults());
                 Path nodeLog = config.out().resolve("node-2.log");
-                NodeProcess node2 = NodeProcess.start(List.of("migrate-node", "--connect",
+                NodeProcess node2 = NodeProcess.start(List.of("control-node", "--connect",
                         NodeProcess.hostPort(net.localAddress()), "--listener", listenerName), nodeLog,
                         NODE_START_TIMEOUT_S);
                 try {
@@ -175,8 +178,8 @@ public final class MigrateScenario {
                     Implementation.ofClass(ListenedController.class)
                             .withConfiguration(ListenedController.configuration(listenerName)));
             try {
-                result = Management.migrate(rig.node(), MigrateConfig.CONTROL_NODE, request,
-                        Duration.ofNanos(ANSWER_TIMEOUT_NS)).get(ANSWER_TIMEOUT_NS, TimeUnit.NANOSECONDS);
+                result = Requester.ask(rig.node(), context -> Management.migrate(context, MigrateConfig.CONTROL_NODE,
+                        request, Duration.ofNanos(ANSWER_TIMEOUT_NS))).get(ANSWER_TIMEOUT_NS, TimeUnit.NANOSECONDS);
             } catch (ExecutionException | CompletionException | TimeoutException e) {
                 failure = (e.getCause() != null ? e.getCause() : e).toString();
                 LOG.error("the migration failed; the controller runs on at node 2: {}", failure);
@@ -222,8 +225,9 @@ public final class MigrateScenario {
                 Implementation.ofClass(ListenedController.class)
                         .withConfiguration(ListenedController.configuration(listenerName)));
         try {
-            MigrationResult result = Management.migrate(rig.node(), MigrateConfig.CONTROL_NODE, request,
-                    Duration.ofNanos(ANSWER_TIMEOUT_NS)).get(ANSWER_TIMEOUT_NS, TimeUnit.NANOSECONDS);
+            MigrationResult result = Requester.ask(rig.node(), context -> Management.migrate(context,
+                    MigrateConfig.CONTROL_NODE, request, Duration.ofNanos(ANSWER_TIMEOUT_NS)))
+                    .get(ANSWER_TIMEOUT_NS, TimeUnit.NANOSECONDS);
             LOG.info("rehearsal: the spare controller moved to node 1 in {} ms; removing it", result.totalNs() / 1e6);
             rig.node().remove(WarmUp.REHEARSAL);
         } catch (ExecutionException | TimeoutException e) {

@@ -34,7 +34,7 @@ import picocli.CommandLine.Spec;
                     + " Prints V1 against V2, the upgrade's timings and the control hand-over; writes a CSV and"
                     + " PNG/SVG plots.",
             "Default: 60 s, upgrade at 30 s."},
-        footer = {"", "Example: etherware-demo upgrade --duration 20 --upgrade-at 8"})
+        footer = {"", "Example: etherware-demo upgrade --duration 20 --upgrade-at 8 --remote"})
 public final class UpgradeCommand implements Callable<Integer> {
 
     @Spec
@@ -57,6 +57,11 @@ public final class UpgradeCommand implements Callable<Integer> {
             description = "The plugin jar with controller V2 (default: the build's, target/plugins/*"
                     + UpgradeConfig.JAR_SUFFIX + ").")
     private Path jar;
+
+    @Option(names = "--remote",
+            description = "The paper's topology (Fig. 10): the controller on node 2 in a second JVM, upgraded by a"
+                    + " request from the Requester component on node 1 (default: one node).")
+    private boolean remote;
 
     @Override
     public Integer call() throws Exception {
@@ -81,7 +86,7 @@ public final class UpgradeCommand implements Callable<Integer> {
                     + " with controller V2, or build it with ./mvnw -pl examples -am -DskipTests package");
         }
         UpgradeConfig config = UpgradeConfig.of(durationNs, common.periodNs(), plugin, common.out("upgrade"))
-                .withBaudRate(common.baudRate());
+                .withBaudRate(common.baudRate()).withRemote(remote);
         if (upgradeAtS != null) {
             long atNs = Math.round(upgradeAtS * 1e9);
             if (!(atNs >= UpgradeConfig.MIN_PHASE_NS && atNs <= durationNs - UpgradeConfig.MIN_PHASE_NS)) {

@@ -14,9 +14,12 @@ import java.util.Objects;
  * @param jar              the plugin jar holding controller V2 ({@link #V2_CLASS})
  * @param initialTheta2Rad where the pendulum starts, off upright
  * @param out              where the CSV, plots and table go
+ * @param baudRate         the serial line rate to the DSP board
+ * @param remote           the paper's topology (Fig. 10): the controller on node 2 in a second JVM,
+ *                         upgraded by a request from the Requester on node 1; false: one node
  */
 public record UpgradeConfig(long durationNs, long periodNs, long upgradeAtNs, Path jar, double initialTheta2Rad,
-        Path out, int baudRate) {
+        Path out, int baudRate, boolean remote) {
 
     /** A minute: 30 s of V1, then 30 s of V2. */
     public static final long DEFAULT_DURATION_NS = 60_000_000_000L;
@@ -55,16 +58,21 @@ public record UpgradeConfig(long durationNs, long periodNs, long upgradeAtNs, Pa
     /** The defaults, or the upgrade half way through a run shorter than a minute. */
     public static UpgradeConfig of(long durationNs, long periodNs, Path jar, Path out) {
         return new UpgradeConfig(durationNs, periodNs, Math.min(DEFAULT_UPGRADE_AT_NS, durationNs / 2), jar, 0.02,
-                out, PlantWiring.DEFAULT_BAUD_RATE);
+                out, PlantWiring.DEFAULT_BAUD_RATE, false);
     }
 
     /** A copy with the upgrade at another time. */
     public UpgradeConfig withUpgradeAtNs(long nanos) {
-        return new UpgradeConfig(durationNs, periodNs, nanos, jar, initialTheta2Rad, out, baudRate);
+        return new UpgradeConfig(durationNs, periodNs, nanos, jar, initialTheta2Rad, out, baudRate, remote);
     }
 
     /** A copy with another serial line rate to the DSP board. */
     public UpgradeConfig withBaudRate(int bitsPerSecond) {
-        return new UpgradeConfig(durationNs, periodNs, upgradeAtNs, jar, initialTheta2Rad, out, bitsPerSecond);
+        return new UpgradeConfig(durationNs, periodNs, upgradeAtNs, jar, initialTheta2Rad, out, bitsPerSecond, remote);
+    }
+
+    /** A copy in the paper's two-node topology ({@code true}) or on one node. */
+    public UpgradeConfig withRemote(boolean twoNodes) {
+        return new UpgradeConfig(durationNs, periodNs, upgradeAtNs, jar, initialTheta2Rad, out, baudRate, twoNodes);
     }
 }

@@ -57,8 +57,10 @@ public final class UpgradeReport {
     public static String heading(UpgradeConfig config) {
         return String.format(Locale.ROOT, "upgrade (paper Section VI-C1): %.0f s on Etherware-RT, controller on HIGH"
                 + " Ticks every %d ms; V1 (soft gains) replaced by V2 (tight gains, from %s) at t = %.1f s by a HIGH"
-                + " management request", config.durationNs() / 1e9, config.periodNs() / 1_000_000,
-                config.jar().getFileName(), config.upgradeAtNs() / 1e9);
+                + " management request%s", config.durationNs() / 1e9, config.periodNs() / 1_000_000,
+                config.jar().getFileName(), config.upgradeAtNs() / 1e9, config.remote()
+                        ? " from the Requester on node 1 to the controller's node 2 (a second JVM), as in Fig. 10"
+                        : " on the one node");
     }
 
     /** The lines about the upgrade itself: what replaced what, its timings and the hand-over. */

@@ -25,8 +25,19 @@ class UpgradeScenarioIT {
     @Test
     void shouldSwapInV2FromThePluginJarWithoutLettingThePendulumGo() throws Exception {
         Path jar = UpgradeCommand.defaultJar();
-        UpgradeConfig config = UpgradeConfig.of(RUN_NS, UpgradeConfig.DEFAULT_PERIOD_NS, jar,
-                Path.of("target", "scenarios-it", "upgrade"));
+        assertUpgradedUpright(UpgradeConfig.of(RUN_NS, UpgradeConfig.DEFAULT_PERIOD_NS, jar,
+                Path.of("target", "scenarios-it", "upgrade")));
+    }
+
+    /** The paper's topology: the controller in a second JVM, the request from node 1's Requester. */
+    @Test
+    void shouldSwapInV2OnTheControllersNodeAtTheRequestOfTheRequesterOnThePlantsNode() throws Exception {
+        Path jar = UpgradeCommand.defaultJar();
+        assertUpgradedUpright(UpgradeConfig.of(RUN_NS, UpgradeConfig.DEFAULT_PERIOD_NS, jar,
+                Path.of("target", "scenarios-it", "upgrade-remote")).withRemote(true));
+    }
+
+    private static void assertUpgradedUpright(UpgradeConfig config) throws Exception {
         UpgradeOutcome outcome = new UpgradeScenario(config, new Progress("upgrade", RUN_NS / 1e9, System.out, false))
                 .run();
         UpgradeReport.write(config, outcome);
@@ -46,10 +57,10 @@ class UpgradeScenarioIT {
         List<ControlCycle> after = run.cycles().stream().filter(c -> c.releaseNs() >= outcome.v2FromNs()).toList();
         assertTrue(after.size() > 200, () -> "V2 ran " + after.size() + " cycles");
         assertTrue(after.stream().allMatch(c -> c.gainVersion() == 2), "every cycle after the hand-over is V2's");
-        // The loop lost nothing beyond the swap: at most the one cycle whose reading was in flight
-        // when V1 stopped, and the hand-over fits the measured swap gap plus that cycle.
+        // The loop lost nothing: the swap waits until no reading of V1's is in flight, so every
+        // cycle ends in a torque command, and the hand-over fits the measured swap gap.
         UpgradeReport.HandOver handOver = UpgradeReport.handOver(run).orElseThrow();
-        assertTrue(handOver.lostCycles() <= 1, () -> "cycles lost in the hand-over: " + handOver.lostCycles());
+        assertEquals(0, handOver.lostCycles(), () -> "cycles lost in the hand-over: " + handOver.lostCycles());
         assertTrue(result.gapNs() >= 0 && handOver.handOverNs() < result.gapNs() + 2 * run.periodNs(),
                 () -> "hand-over " + handOver.handOverNs() + " ns against the swap gap " + result.gapNs() + " ns");
         long missesAfter = RunSummary.of(outcome.afterUpgrade()).deadlineMisses();
