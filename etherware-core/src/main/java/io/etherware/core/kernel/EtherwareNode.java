@@ -46,7 +46,7 @@ import org.slf4j.LoggerFactory;
  * refuse dispatcher threads, where they could wait for themselves; use the asynchronous forms
  * there.
  */
-public final class EtherwareNode implements Kernel, AutoCloseable {
+public final class EtherwareNode implements ComponentHost, AutoCloseable {
 
     private static final Logger log = LoggerFactory.getLogger(Kernel.class);
 
@@ -197,6 +197,7 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
      * {@return a future that completes when the node has closed, whoever closed it (escalation
      * may)}
      */
+    @Override
     public CompletableFuture<Void> closedFuture() {
         return core.closedFuture();
     }
@@ -453,6 +454,7 @@ public final class EtherwareNode implements Kernel, AutoCloseable {
     }
 
     /** {@return the node's scheduler (e.g. to learn the priorities of its dispatchers)} */
+    @Override
     public Scheduler scheduler() {
         return core.scheduler();
     }

@@ -1,8 +1,8 @@
 package io.etherware.core.kernel;
 
 /**
- * When a timed swap ({@link Kernel#swapAsync(io.etherware.core.message.Profile, java.util.function.Supplier,
- * java.util.function.LongConsumer)}) paused a component, on the node's monotonic clock
+ * When a timed swap ({@link ComponentHost#swapAsync(io.etherware.core.message.Profile,
+ * java.util.function.Supplier, java.util.function.LongConsumer)}) paused a component, on the node's monotonic clock
  * ({@link io.etherware.core.time.NodeClock#nanoTime()}). A time the kernel does not know is
  * {@link #UNKNOWN_NS}.
  *
@@ -20,9 +20,6 @@ public record SwapTimings(long lastOldHandlingEndNs, long swapStartNs, long swap
 
     /** A time the kernel does not know (not -1: a monotonic clock may read negative). */
     public static final long UNKNOWN_NS = Long.MIN_VALUE;
-
-    /** What a kernel that does not time swaps reports. */
-    public static final SwapTimings UNMEASURED = new SwapTimings(UNKNOWN_NS, UNKNOWN_NS, UNKNOWN_NS, -1);
 
     /**
      * {@return how long the component was paused at its boundary, in nanoseconds

@@ -21,10 +21,10 @@ import java.util.concurrent.TimeUnit;
 import org.junit.jupiter.api.Test;
 
 /**
- * A hold that waits for the component to be quiescent ({@link Kernel#holdAsync(Profile, Duration)}):
+ * A hold that waits for the component to be quiescent ({@link ComponentHost#holdAsync(Profile, Duration)}):
  * the outcomes of its requests in flight reach it before it is held, so a migration that holds it
  * so leaves no reply behind; a reply that never comes holds it anyway at the end of the wait. A
- * swap waits the same way ({@link Kernel#swapAsync(Profile, java.util.function.Supplier,
+ * swap waits the same way ({@link ComponentHost#swapAsync(Profile, java.util.function.Supplier,
  * java.util.function.LongConsumer, Duration)}).
  */
 class QuiescentHoldTest {
@@ -134,8 +134,8 @@ class QuiescentHoldTest {
                     "both replies reached the old logic's callbacks");
             node.send(REQUESTER, new Num(3));
             Await.until("the new logic handles what comes next", () -> newLogicSaw.equals(List.of(3L)));
-            assertThrows(IllegalArgumentException.class, () -> node.swapAsync(REQUESTER, () -> (message, context) -> { },
-                    ns -> { }, Duration.ofMillis(-1)));
+            assertThrows(IllegalArgumentException.class, () -> node.swapAsync(REQUESTER,
+                    () -> (message, context) -> { }, ns -> { }, Duration.ofMillis(-1)));
         }
     }
 }

@@ -142,25 +142,4 @@ class TimedSwapTest {
             assertEquals(0, firstStarts.get());
         }
     }
-
-    @Test
-    void shouldSwapAndReportUnmeasuredWhenTheKernelDoesNotTimeSwaps() throws Exception {
-        var swapped = new CompletableFuture<Void>();
-        Kernel untimed = (Kernel) java.lang.reflect.Proxy.newProxyInstance(Kernel.class.getClassLoader(),
-                new Class<?>[] {Kernel.class}, (proxy, method, args) -> {
-                    if (method.isDefault()) {
-                        return java.lang.reflect.InvocationHandler.invokeDefault(proxy, method, args);
-                    }
-                    if (method.getName().equals("swapAsync")) {
-                        return swapped;
-                    }
-                    throw new UnsupportedOperationException(method.getName());
-                });
-        CompletableFuture<SwapTimings> timings = untimed.swapAsync(TARGET, () -> (message, context) -> { },
-                startNs -> { });
-        assertFalse(timings.isDone());
-        swapped.complete(null);
-        assertEquals(SwapTimings.UNMEASURED, timings.get(30, TimeUnit.SECONDS));
-        assertEquals(SwapTimings.UNKNOWN_NS, SwapTimings.UNMEASURED.pauseNs());
-    }
 }

@@ -368,7 +368,7 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
          * outcomes of the component's own requests in flight (replies, failures, timeouts) to
          * reach it at the source, where their callbacks live: the component is held at its first
          * message boundary without a request in flight (see
-         * {@link io.etherware.core.kernel.Kernel#holdAsync(io.etherware.core.message.Profile, Duration)}).
+         * {@link io.etherware.core.kernel.ComponentHost#holdAsync(io.etherware.core.message.Profile, Duration)}).
          * A component still waiting after this long is held anyway, and the outcomes that come
          * later are handed to the stopped instance at the source, not to the moved one. An
          * upgrade waits the same way before it swaps the logic, so that an outcome reaches the

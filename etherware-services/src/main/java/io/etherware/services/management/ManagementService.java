@@ -3,9 +3,9 @@ package io.etherware.services.management;
 import io.etherware.core.component.Component;
 import io.etherware.core.component.ComponentContext;
 import io.etherware.core.component.Shell;
+import io.etherware.core.kernel.ComponentHost;
 import io.etherware.core.kernel.Endpoint;
 import io.etherware.core.kernel.EtherwareNode;
-import io.etherware.core.kernel.Kernel;
 import io.etherware.core.kernel.ProfileResolutionException;
 import io.etherware.core.kernel.SwapTimings;
 import io.etherware.core.message.Criticality;
@@ -58,7 +58,7 @@ import org.slf4j.Logger;
  *   <li>Back on the service's dispatcher (the worker sends the loaded logic to the service as a
  *       local message carrying the request's QoS, so the swap starts at the request's priority,
  *       paper Section VI-C1):
- *       {@link Kernel#swapAsync(Profile, java.util.function.Supplier, java.util.function.LongConsumer)}
+ *       {@link ComponentHost#swapAsync(Profile, java.util.function.Supplier, java.util.function.LongConsumer)}
  *       without waiting for it. At the component's next message boundary the kernel snapshots the
  *       old logic, restores the state into the new one ({@code restore} sees the state's
  *       {@code schemaVersion()}), starts it and swaps it in; messages arriving meanwhile wait and
@@ -74,8 +74,10 @@ import org.slf4j.Logger;
  * Loading and answering run on one worker thread per service, so upgrades are loaded one at a
  * time; requests queue for it in arrival order, at most
  * {@link ManagementConfig#maxQueuedOperations()} waiting, and one beyond that is answered at once
- * with {@link Reason#BUSY} (counted, {@link #busyCount()}). The swap runs where the kernel puts it: on the service's dispatcher if the component is
- * between messages, else on the component's dispatcher right after its current message. Either
+ * with {@link Reason#BUSY} (counted, {@link #busyCount()}). The swap runs where the kernel puts
+ * it: on the service's dispatcher if the component is between messages and awaits no reply, else
+ * on the component's dispatcher right after a later message (see
+ * {@link ManagementConfig#settleWaitNs()}). Either
  * way the new logic's {@code restore} and {@code onStart} run on a dispatcher and should be quick.
  *
  * <h2>A migration</h2>
@@ -94,7 +96,7 @@ public final class ManagementService implements Component {
     private static final String UPGRADE = "upgrade";
     private static final String MIGRATE = "migrate";
 
-    private final Kernel kernel;
+    private final ComponentHost kernel;
     private final ManagementConfig config;
     private final NetworkMessenger network;
     private final ImplementationLoader loader;
@@ -120,7 +122,7 @@ public final class ManagementService implements Component {
      * @param kernel the node whose components it manages
      * @param config its allowlist, trusted signers, access list and timeouts
      */
-    public ManagementService(Kernel kernel, ManagementConfig config) {
+    public ManagementService(ComponentHost kernel, ManagementConfig config) {
         this(kernel, config, null);
     }
 
@@ -133,12 +135,12 @@ public final class ManagementService implements Component {
      * @param config  its allowlist, trusted signers, access list and timeouts
      * @param network the node's started messenger, or null
      */
-    public ManagementService(Kernel kernel, ManagementConfig config, NetworkMessenger network) {
+    public ManagementService(ComponentHost kernel, ManagementConfig config, NetworkMessenger network) {
         this(kernel, config, network, new Counters(), new ConcurrentHashMap<>());
     }
 
-    private ManagementService(Kernel kernel, ManagementConfig config, NetworkMessenger network, Counters counters,
-                              Map<Profile, URLClassLoader> jarLoaders) {
+    private ManagementService(ComponentHost kernel, ManagementConfig config, NetworkMessenger network,
+                              Counters counters, Map<Profile, URLClassLoader> jarLoaders) {
         this.kernel = Objects.requireNonNull(kernel, "kernel");
         this.config = Objects.requireNonNull(config, "config");
         Management.registerContents(kernel.contentsTypes());

@@ -59,7 +59,7 @@
  *       upgrade) and constructs the instance; the component runs on meanwhile.</li>
  *   <li><b>quiesce</b>: the source holds the component at a message boundary where it waits for
  *       no outcome of a request of its own (Kramer and Magee's passive state,
- *       {@link io.etherware.core.kernel.Kernel#holdAsync(io.etherware.core.message.Profile,
+ *       {@link io.etherware.core.kernel.ComponentHost#holdAsync(io.etherware.core.message.Profile,
  *       java.time.Duration)}); its messages are kept from then on, in order. Until then it runs
  *       on, so the replies to its requests in flight reach it at the source, where the callbacks
  *       that wait for them live: a callback cannot travel, so the request completes before the
@@ -69,14 +69,14 @@
  *   <li><b>transfer</b>: the snapshot travels as XML in the INSTALL step; the target restores it
  *       and registers the component <em>held</em> under its profile and under an <em>arrival</em>
  *       profile unique to this migration ({@code etherware.arrival[id=...]},
- *       {@link io.etherware.core.kernel.Kernel#addHeld}). The target now announces the profile.</li>
+ *       {@link io.etherware.core.kernel.ComponentHost#addHeld}). The target now announces the profile.</li>
  *   <li><b>relocate</b>: the source stops the component and forwards, to the arrival profile, the
  *       kept messages, then those still queued for it at its dispatchers, then switches its
- *       registry to the route ({@link io.etherware.core.kernel.Kernel#relocateAsync}).</li>
+ *       registry to the route ({@link io.etherware.core.kernel.ComponentHost#relocateAsync}).</li>
  *   <li><b>hand-over</b>: the source seals its route: what it forwards from now on goes to the
  *       profile itself, and the HANDOVER step says how many messages went to the arrival profile;
  *       once they are in, the target releases the component
- *       ({@link io.etherware.core.kernel.Kernel#admit}) and unregisters the arrival profile, which
+ *       ({@link io.etherware.core.kernel.ComponentHost#admit}) and unregisters the arrival profile, which
  *       nothing addresses any more. Its answer carries the start of the first message handled
  *       there, for the gap. The source's registry keeps the sealed route only until the target's
  *       announcement of the profile is there, then routes the profile as any announced one

@@ -73,8 +73,7 @@ public final class NetworkMessenger implements AutoCloseable {
      * Starts a messenger for {@code kernel}: binds the listen address, dials the peers. Returns
      * once it listens; connections come up in the background ({@link #awaitConnected}).
      *
-     * @param kernel the node to join to others; an {@link EtherwareNode} closes the messenger
-     *               when it closes
+     * @param kernel the node to join to others; the messenger closes when the node closes
      * @param config the validated configuration
      * @return the running messenger
      * @throws UncheckedIOException if the listen address cannot be bound, or the factory's
@@ -92,11 +91,9 @@ public final class NetworkMessenger implements AutoCloseable {
                     + config.listenAddress() + ": " + e.getMessage(), e);
         }
         var messenger = new NetworkMessenger(engine);
-        if (kernel instanceof EtherwareNode node) {
-            // A node closed first takes its messenger along (off the closing thread).
-            node.closedFuture().thenRunAsync(messenger::close, task -> Thread.ofPlatform().daemon()
-                    .name("etherware-net-" + kernel.nodeId() + "-close").start(task));
-        }
+        // A node closed first takes its messenger along (off the closing thread).
+        kernel.closedFuture().thenRunAsync(messenger::close, task -> Thread.ofPlatform().daemon()
+                .name("etherware-net-" + kernel.nodeId() + "-close").start(task));
         return messenger;
     }
 
@@ -167,7 +164,7 @@ public final class NetworkMessenger implements AutoCloseable {
 
     /**
      * A route to node {@code nodeId} for any profile, e.g. to relocate a component there
-     * ({@link Kernel#relocateAsync}). Its messages wait for the node like any other.
+     * ({@link ComponentHost#relocateAsync}). Its messages wait for the node like any other.
      *
      * @param nodeId another node's id
      * @return a route that queues messages for that node

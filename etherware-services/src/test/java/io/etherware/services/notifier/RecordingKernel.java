@@ -1,7 +1,6 @@
 package io.etherware.services.notifier;
 
 import io.etherware.core.component.Component;
-import io.etherware.core.component.ComponentState;
 import io.etherware.core.component.Shell;
 import io.etherware.core.kernel.Endpoint;
 import io.etherware.core.kernel.Kernel;
@@ -13,6 +12,7 @@ import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageId;
 import io.etherware.core.message.Profile;
 import io.etherware.core.message.Tick;
+import io.etherware.core.scheduler.Scheduler;
 import io.etherware.core.time.NodeClock;
 import java.util.ArrayList;
 import java.util.List;
@@ -21,7 +21,6 @@ import java.util.Set;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.atomic.AtomicLong;
-import java.util.function.Supplier;
 
 /**
  * A kernel that records what is sent, with a registry of fake local components whose finished
@@ -177,28 +176,13 @@ final class RecordingKernel implements Kernel {
     }
 
     @Override
-    public CompletableFuture<Void> holdAsync(Profile profile) {
-        throw new UnsupportedOperationException();
+    public Scheduler scheduler() {
+        throw new UnsupportedOperationException("the Notifier does not ask for the node's scheduler");
     }
 
     @Override
-    public void release(Profile profile) {
-        throw new UnsupportedOperationException();
-    }
-
-    @Override
-    public CompletableFuture<Void> swapAsync(Profile profile, Supplier<? extends Component> factory) {
-        throw new UnsupportedOperationException();
-    }
-
-    @Override
-    public CompletableFuture<ComponentState> snapshotAsync(Profile profile) {
-        throw new UnsupportedOperationException();
-    }
-
-    @Override
-    public CompletableFuture<Void> relocateAsync(Profile profile, RemoteRoute route) {
-        throw new UnsupportedOperationException();
+    public CompletableFuture<Void> closedFuture() {
+        return new CompletableFuture<>(); // this test double never closes
     }
 
     @Override

@@ -5,6 +5,7 @@ import io.etherware.core.component.ComponentState;
 import io.etherware.core.component.RequestFailedException;
 import io.etherware.core.component.RequestFailedException.Reason;
 import io.etherware.core.component.Shell;
+import io.etherware.core.kernel.ComponentHost;
 import io.etherware.core.kernel.Endpoint;
 import io.etherware.core.kernel.ProfileResolutionException;
 import io.etherware.core.kernel.Kernel;
@@ -57,7 +58,7 @@ import org.slf4j.LoggerFactory;
  *
  * <p>Thread-safety: every method may be called from any thread; lifecycle changes are serialized.
  */
-public final class KernelCore implements Kernel, JobRunner {
+public final class KernelCore implements ComponentHost, JobRunner {
 
     private static final Logger log = LoggerFactory.getLogger(Kernel.class);
     /** Extra wait of a blocking request beyond its timeout, for the timer thread to fire. */
@@ -79,6 +80,7 @@ public final class KernelCore implements Kernel, JobRunner {
     private final Comparator<Job> urgency;
     private final ProfileTable registry = new ProfileTable();
     private final RequestTable requests;
+    private final Reconfiguration reconfiguration;
     private final AtomicLong messageSequence = new AtomicLong();
     private final AtomicLong jobSequence = new AtomicLong();
     /** Bytes of queued messages from the network, by the node they came through. */
@@ -108,6 +110,7 @@ public final class KernelCore implements Kernel, JobRunner {
         // Ties in arrival order, whatever the scheduler's comparator does with them.
         this.urgency = scheduler.urgency().thenComparingLong(Job::sequence);
         this.requests = new RequestTable(nodeId, this::deliverOutcome, this::mayAnswer);
+        this.reconfiguration = new Reconfiguration(clock, registry, requests);
         registerContents(config.contentsTypes());
     }
 
@@ -143,6 +146,7 @@ public final class KernelCore implements Kernel, JobRunner {
         return config;
     }
 
+    @Override
     public Scheduler scheduler() {
         return scheduler;
     }
@@ -325,21 +329,12 @@ public final class KernelCore implements Kernel, JobRunner {
 
     @Override
     public CompletableFuture<Void> holdAsync(Profile profile) {
-        LocalShell shell = localShell(profile);
-        var held = new CompletableFuture<Void>();
-        shell.atBoundary(() -> {
-            shell.hold();
-            held.complete(null);
-        });
-        return held;
+        return reconfiguration.holdAsync(localShell(profile));
     }
 
     @Override
     public CompletableFuture<Void> holdAsync(Profile profile, Duration settleWait) {
-        LocalShell shell = localShell(profile);
-        var held = new CompletableFuture<Void>();
-        whenSettled(shell, () -> shell.hold(held), settleWait, held);
-        return held;
+        return reconfiguration.holdAsync(localShell(profile), settleWait);
     }
 
     @Override
@@ -350,21 +345,13 @@ public final class KernelCore implements Kernel, JobRunner {
     @Override
     public CompletableFuture<Void> swapAsync(Profile profile, Supplier<? extends Component> factory) {
         Objects.requireNonNull(factory, "factory");
-        LocalShell shell = localShell(profile);
-        var swapped = new CompletableFuture<SwapTimings>();
-        shell.atBoundary(() -> shell.swap(factory, swapped, null));
-        return swapped.thenApply(timings -> null);
+        return reconfiguration.swapAsync(localShell(profile), factory, null, Duration.ZERO).thenApply(timings -> null);
     }
 
     @Override
     public CompletableFuture<SwapTimings> swapAsync(Profile profile, Supplier<? extends Component> factory,
                                                     LongConsumer onFirstHandling) {
-        Objects.requireNonNull(factory, "factory");
-        Objects.requireNonNull(onFirstHandling, "onFirstHandling");
-        LocalShell shell = localShell(profile);
-        var swapped = new CompletableFuture<SwapTimings>();
-        shell.atBoundary(() -> shell.swap(factory, swapped, onFirstHandling));
-        return swapped;
+        return swapAsync(profile, factory, onFirstHandling, Duration.ZERO);
     }
 
     @Override
@@ -372,37 +359,7 @@ public final class KernelCore implements Kernel, JobRunner {
                                                     LongConsumer onFirstHandling, Duration settleWait) {
         Objects.requireNonNull(factory, "factory");
         Objects.requireNonNull(onFirstHandling, "onFirstHandling");
-        LocalShell shell = localShell(profile);
-        var swapped = new CompletableFuture<SwapTimings>();
-        Runnable swap = () -> {
-            if (!swapped.isDone()) {
-                shell.swap(factory, swapped, onFirstHandling);
-            }
-        };
-        whenSettled(shell, swap, settleWait, swapped);
-        return swapped;
-    }
-
-    /**
-     * Runs {@code action} at a boundary of {@code shell} where it awaits no outcome of its
-     * requests, or at the first boundary after {@code settleWait} (a timer makes one if the
-     * component is idle then); {@code done} says when no further try is needed.
-     */
-    private void whenSettled(LocalShell shell, Runnable action, Duration settleWait, CompletableFuture<?> done) {
-        if (Objects.requireNonNull(settleWait, "settleWait").isNegative()) {
-            throw new IllegalArgumentException("settleWait=" + settleWait + " must not be negative");
-        }
-        long waitNs = Durations.toNs("settleWait", settleWait);
-        long deadlineNs = clock.nanoTime() + waitNs;
-        shell.atBoundary(() -> shell.whenSettled(action, deadlineNs, waitNs == 0));
-        if (waitNs > 0) {
-            // Without a boundary after the deadline (an idle component waiting for a lost reply).
-            requests.schedule(() -> {
-                if (!done.isDone()) {
-                    shell.atBoundary(() -> shell.whenSettled(action, deadlineNs, true));
-                }
-            }, waitNs);
-        }
+        return reconfiguration.swapAsync(localShell(profile), factory, onFirstHandling, settleWait);
     }
 
     private LocalShell localShell(Profile profile) {
@@ -659,30 +616,12 @@ public final class KernelCore implements Kernel, JobRunner {
         if (!shell.profile().equals(profile)) {
             throw new IllegalArgumentException("relocate needs the exact profile '" + shell.profile() + "', not a query");
         }
-        var relocated = new CompletableFuture<Void>();
-        shell.atBoundary(() -> {
-            try {
-                shells.remove(shell);
-                shell.relocate(registry, new Endpoint.Remote(route), relocated);
-            } catch (RuntimeException e) {
-                relocated.completeExceptionally(e);
-            }
-        });
-        return relocated.thenRun(() -> retire(shell));
+        return reconfiguration.relocateAsync(shell, route, () -> shells.remove(shell)).thenRun(() -> retire(shell));
     }
 
     @Override
     public CompletableFuture<ComponentState> snapshotAsync(Profile profile) {
-        LocalShell shell = localShell(profile);
-        var state = new CompletableFuture<ComponentState>();
-        shell.atBoundary(() -> {
-            try {
-                state.complete(shell.snapshotNow());
-            } catch (Throwable e) {
-                state.completeExceptionally(e);
-            }
-        });
-        return state;
+        return reconfiguration.snapshotAsync(localShell(profile));
     }
 
     /** Hands a message to a route; a refusal makes it undeliverable. */
@@ -722,6 +661,7 @@ public final class KernelCore implements Kernel, JobRunner {
     }
 
     /** Completes when the node has closed. */
+    @Override
     public CompletableFuture<Void> closedFuture() {
         return closed;
     }

@@ -290,11 +290,6 @@ public final class LocalShell implements Shell {
         gate.atBoundary(action);
     }
 
-    /** Boundary action: from now on, keep arrivals. */
-    void hold() {
-        gate.hold();
-    }
-
     /**
      * Before start, by the thread that adds a migrated component (it owns the gate until start):
      * keep arrivals from the start on, report the first handling to {@code probe}, and pen the

@@ -3,7 +3,7 @@ package io.etherware.services.management.internal;
 import io.etherware.core.component.ComponentState;
 import io.etherware.core.component.RequestFailedException;
 import io.etherware.core.component.Shell;
-import io.etherware.core.kernel.Kernel;
+import io.etherware.core.kernel.ComponentHost;
 import io.etherware.core.kernel.RemoteRoute;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
@@ -42,7 +42,7 @@ public final class MigrationSource {
     /** Beyond a request's own timeout, for the kernel's timer to fire it. */
     private static final long GRACE_NS = TimeUnit.SECONDS.toNanos(1);
 
-    private final Kernel kernel;
+    private final ComponentHost kernel;
     private final ManagementConfig config;
     private final NetworkMessenger network;
     private final AccessControl access;
@@ -52,7 +52,8 @@ public final class MigrationSource {
      *                node without one (its migrations are refused)
      * @param access  decides whether an answer really came from the target
      */
-    public MigrationSource(Kernel kernel, ManagementConfig config, NetworkMessenger network, AccessControl access) {
+    public MigrationSource(ComponentHost kernel, ManagementConfig config, NetworkMessenger network,
+                           AccessControl access) {
         this.kernel = kernel;
         this.config = config;
         this.network = network;

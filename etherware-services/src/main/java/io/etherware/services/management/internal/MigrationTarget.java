@@ -2,8 +2,8 @@ package io.etherware.services.management.internal;
 
 import io.etherware.core.component.Component;
 import io.etherware.core.component.Shell;
+import io.etherware.core.kernel.ComponentHost;
 import io.etherware.core.kernel.Endpoint;
-import io.etherware.core.kernel.Kernel;
 import io.etherware.core.kernel.ProfileResolutionException;
 import io.etherware.core.message.Profile;
 import io.etherware.services.management.ManagementConfig;
@@ -26,8 +26,8 @@ import org.slf4j.LoggerFactory;
 /**
  * The target side of a migration: {@link Phase#PREPARE} loads and constructs the new instance,
  * {@link Phase#INSTALL} restores the shipped state into it and registers it <em>held</em> under the
- * migration's arrival profile ({@link Kernel#addHeld}), {@link Phase#HANDOVER} admits it under its
- * own profile and releases it ({@link Kernel#admit}) once the source has forwarded the messages it
+ * migration's arrival profile ({@link ComponentHost#addHeld}), {@link Phase#HANDOVER} admits it under its
+ * own profile and releases it ({@link ComponentHost#admit}) once the source has forwarded the messages it
  * held. A component installed but never handed over within
  * {@link ManagementConfig#handoverWaitNs()} is removed again: its source has resumed it by then.
  *
@@ -49,7 +49,7 @@ public final class MigrationTarget {
                            CompletableFuture<Long> firstHandlingNs) {
     }
 
-    private final Kernel kernel;
+    private final ComponentHost kernel;
     private final ManagementConfig config;
     private final ImplementationLoader loader;
     private final Executor continuations;
@@ -62,7 +62,7 @@ public final class MigrationTarget {
      * @param continuations where answers that wait are assembled (the service's worker)
      * @param installed     told when a migrated component is handed over, with its jar loader
      */
-    public MigrationTarget(Kernel kernel, ManagementConfig config, ImplementationLoader loader, Executor continuations,
+    public MigrationTarget(ComponentHost kernel, ManagementConfig config, ImplementationLoader loader, Executor continuations,
                            BiConsumer<Profile, URLClassLoader> installed) {
         this.kernel = kernel;
         this.config = config;

@@ -1,6 +1,5 @@
 package io.etherware.services.network.internal;
 
-import io.etherware.core.kernel.EtherwareNode;
 import io.etherware.core.kernel.Kernel;
 import io.etherware.rt.platform.CpuSet;
 import io.etherware.rt.platform.Platform;
@@ -24,8 +23,7 @@ record IoThreads(ThreadPolicy policy, CpuSet cpus) {
     static IoThreads of(Kernel kernel, NetworkConfig config, int lane) {
         ThreadPolicy policy = lane == 0 ? config.threadPolicy() : config.bulkThreadPolicy();
         if (policy == null) {
-            ThreadSchedulingRule rule = kernel instanceof EtherwareNode node
-                    && node.scheduler() instanceof RealtimeScheduler realtime
+            ThreadSchedulingRule rule = kernel.scheduler() instanceof RealtimeScheduler realtime
                     ? realtime.config().threadSchedulingRule() : null;
             policy = rule == null ? ThreadPolicy.NON_REALTIME : lane == 0 ? rule.above(1) : rule.aboveLowest(1);
         }
