@@ -93,6 +93,25 @@
  * component but gets no hand-over within
  * {@link io.etherware.services.management.ManagementConfig#handoverWaitNs()} removes it again.
  *
+ * <h3>When a node dies during a migration</h3>
+ * <table>
+ *   <caption>What survives a process that dies (SIGKILL) at each step</caption>
+ *   <tr><th>dies</th><th>during</th><th>afterwards</th></tr>
+ *   <tr><td>target</td><td>prepare, quiesce, transfer (before the relocation)</td>
+ *       <td>the source's step fails, the hold is released: the component runs at the source with
+ *       every kept message (tested with a second JVM killed during the transfer)</td></tr>
+ *   <tr><td>target</td><td>hand-over, or after it</td>
+ *       <td>the component is gone: its state and the messages forwarded to it lived only
+ *       there</td></tr>
+ *   <tr><td>source</td><td>any step</td>
+ *       <td>the component is gone: a copy installed at the target is held, never handed over,
+ *       and removed after the hand-over wait</td></tr>
+ * </table>
+ * The last two are known limits. The target cannot tell a dead source from one it cannot reach,
+ * which resumes the component itself after its step timeout, so releasing its copy on silence
+ * could run two instances; closing them needs the source to keep the snapshot and what it forwarded
+ * until the hand-over is confirmed, and a way to prove a node dead (its next incarnation).
+ *
  * <h3>Why nothing is lost, duplicated or reordered</h3>
  * Every message for the component is in exactly one place: handled at the source, kept there,
  * queued there, forwarded (acknowledged streams: no loss or duplicate while both nodes live),

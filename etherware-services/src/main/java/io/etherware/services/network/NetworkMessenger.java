@@ -164,7 +164,7 @@ public final class NetworkMessenger implements AutoCloseable {
 
     /**
      * A route to node {@code nodeId} for any profile, e.g. to relocate a component there
-     * ({@link ComponentHost#relocateAsync}). Its messages wait for the node like any other.
+     * ({@link io.etherware.core.kernel.ComponentHost#relocateAsync}). Its messages wait for the node like any other.
      *
      * @param nodeId another node's id
      * @return a route that queues messages for that node
