@@ -1,4 +1,4 @@
-/** Etherware services: Notifier, NetworkMessenger, NetworkTime, runtime upgrade and migration. */
+/** Etherware services: Notifier, NetworkMessenger, NetworkTime, runtime upgrade and migration, recording. */
 module io.etherware.services {
     requires transitive io.etherware.core;
     requires transitive io.etherware.rt;
@@ -6,5 +6,6 @@ module io.etherware.services {
     exports io.etherware.services.management;
     exports io.etherware.services.network;
     exports io.etherware.services.notifier;
+    exports io.etherware.services.recording;
     exports io.etherware.services.time;
 }

@@ -168,6 +168,18 @@ public final class EtherwareNode implements ComponentHost, AutoCloseable {
         return core.shell(profile);
     }
 
+    /**
+     * Lets {@code tap} see every message this node is asked to deliver from now on (see
+     * {@link MessageTap} for the threading contract), until the returned registration is closed.
+     *
+     * @param tap what to tell
+     * @return closes the tap: it sees no message sent after {@code close} returns
+     */
+    public MessageTap.Registration tap(MessageTap tap) {
+        core.addTap(tap);
+        return () -> core.removeTap(tap);
+    }
+
     /** {@return the registered local components, in registration order: a copy taken now} */
     public List<Shell> shells() {
         return core.shells();
