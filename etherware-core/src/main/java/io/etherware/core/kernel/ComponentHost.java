@@ -182,7 +182,10 @@ public interface ComponentHost extends Kernel {
      * {@code arrival} have come (at once if they have; 0 for at once): the component is released,
      * the messages kept so far are handled, the forwarded ones first, in order. The source says
      * how many it forwarded, because its request to admit may overtake some of them on the way;
-     * it sends nothing more to {@code arrival}, so the admission unregisters it.
+     * it sends nothing more to {@code arrival}, so once that many are in, {@code arrival} is
+     * unregistered. A later call with a lower count (a forwarded message was refused on the way)
+     * admits at once, but {@code arrival} stays registered until the first call's count is in,
+     * for a message that was only late.
      *
      * @param arrival        the arrival profile given to {@link #addHeld}
      * @param forwardedCount how many messages the source forwarded to {@code arrival}; &gt;= 0

@@ -270,6 +270,28 @@ class ManagementHooksTest {
     }
 
     @Test
+    void shouldStillDeliverAForwardedMessageThatComesAfterAnAdmissionThatStoppedWaitingForIt() throws Exception {
+        var handled = new CopyOnWriteArrayList<Long>();
+        Profile arrival = Profile.of("etherware.arrival", "id", "late");
+        try (var node = EtherwareNode.builder().nodeId("late-arrival").build()) {
+            node.start();
+            node.registry().registerRemote(TARGET, message -> { });
+            node.addHeld(TARGET, arrival, () -> (message, context) -> handled.add(message.contentsAs(Num.class).value()),
+                    ns -> { });
+            node.admit(arrival, 2); // the source forwarded two
+            node.send(arrival, new Num(1));
+            node.admit(arrival, 0); // the hand-over's timer: stop waiting for the second
+            Await.until("admitted with one of two", () -> handled.size() == 1);
+            assertTrue(node.registry().profiles().contains(arrival), "the second is still awaited there");
+            node.send(arrival, new Num(2)); // only late: still delivered
+            Await.until("the late one handled", () -> handled.size() == 2);
+            assertEquals(List.of(1L, 2L), handled);
+            assertFalse(node.registry().profiles().contains(arrival), "both in: the arrival profile is gone");
+            assertEquals(0, node.stats().undeliverable());
+        }
+    }
+
+    @Test
     void shouldHandleTheForwardedMessagesOfAnArrivalBeforeThoseSentToItDirectlyOnceAdmitted() throws Exception {
         var handled = new CopyOnWriteArrayList<Long>();
         var firstNs = new CompletableFuture<Long>();

@@ -138,4 +138,23 @@ class QuiescentHoldTest {
                     () -> (message, context) -> { }, ns -> { }, Duration.ofMillis(-1)));
         }
     }
+
+    @Test
+    void shouldRunTwoSwapsThatWaitForQuiescenceInTheOrderTheyWereAsked() throws Exception {
+        try (var node = requestInFlight("quiescent-two-swaps")) {
+            var order = new CopyOnWriteArrayList<String>();
+            CompletableFuture<SwapTimings> first = node.swapAsync(REQUESTER, () -> (message, context) -> { },
+                    ns -> { }, Duration.ofSeconds(30));
+            first.thenRun(() -> order.add("first"));
+            CompletableFuture<SwapTimings> second = node.swapAsync(REQUESTER,
+                    () -> (message, context) -> order.add("second's logic"), ns -> { }, Duration.ofSeconds(30));
+            second.thenRun(() -> order.add("second"));
+            answer.countDown();
+            second.get(30, TimeUnit.SECONDS);
+            assertTrue(first.isDone(), "the first swap ran before the second");
+            node.send(REQUESTER, new Num(2));
+            Await.until("the component handles with the second swap's logic", () -> order.size() == 3);
+            assertEquals(List.of("first", "second", "second's logic"), order);
+        }
+    }
 }

@@ -27,16 +27,19 @@ import java.util.Objects;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.CompletionException;
 import java.util.concurrent.ConcurrentHashMap;
-import java.util.concurrent.ArrayBlockingQueue;
 import java.util.concurrent.Executor;
+import java.util.concurrent.ExecutionException;
 import java.util.concurrent.ExecutorService;
+import java.util.concurrent.Executors;
 import java.util.concurrent.RejectedExecutionException;
-import java.util.concurrent.SynchronousQueue;
-import java.util.concurrent.ThreadPoolExecutor;
 import java.util.concurrent.TimeUnit;
+import java.util.concurrent.TimeoutException;
+import java.util.concurrent.atomic.AtomicBoolean;
+import java.util.concurrent.atomic.AtomicInteger;
 import java.util.concurrent.atomic.AtomicReference;
 import java.util.concurrent.atomic.LongAdder;
 import java.util.function.BiConsumer;
+import java.util.function.Consumer;
 import org.slf4j.Logger;
 
 /**
@@ -105,9 +108,13 @@ public final class ManagementService implements Component {
     private final Map<Profile, URLClassLoader> jarLoaders;
     private final Counters counters;
     /** Upgrades' loading and migrations away from this node: one at a time, in arrival order. */
-    private ThreadPoolExecutor worker;
+    private ExecutorService worker;
     /** PREPARE steps of migrations into this node: apart, so two nodes migrating to each other go on. */
-    private ThreadPoolExecutor steps;
+    private ExecutorService steps;
+    /** Requests handed to the worker and not yet answered or done (the one in progress included). */
+    private final AtomicInteger operationsIn = new AtomicInteger();
+    /** PREPARE steps handed to the steps thread and not yet answered. */
+    private final AtomicInteger stepsIn = new AtomicInteger();
     private Executor continuations;
     private MigrationSource migrationSource;
     private MigrationTarget migrationTarget;
@@ -195,8 +202,10 @@ public final class ManagementService implements Component {
     public void onStart(ComponentContext context) {
         this.context = context;
         this.log = context.logger();
-        this.worker = boundedThread("etherware-management-" + kernel.nodeId());
-        this.steps = boundedThread("etherware-management-steps-" + kernel.nodeId());
+        this.worker = Executors.newSingleThreadExecutor(Thread.ofPlatform().daemon()
+                .name("etherware-management-" + kernel.nodeId()).factory());
+        this.steps = Executors.newSingleThreadExecutor(Thread.ofPlatform().daemon()
+                .name("etherware-management-steps-" + kernel.nodeId()).factory());
         this.continuations = inlineWhenRefused(worker);
         this.migrationSource = new MigrationSource(kernel, config, network, access);
         // The answers of steps into this node must not wait for this node's own migration away,
@@ -216,32 +225,55 @@ public final class ManagementService implements Component {
         };
     }
 
-    /** One thread, with room for {@link ManagementConfig#maxQueuedOperations()} tasks waiting. */
-    private ThreadPoolExecutor boundedThread(String name) {
-        int room = config.maxQueuedOperations();
-        return new ThreadPoolExecutor(1, 1, 0, TimeUnit.MILLISECONDS,
-                room == 0 ? new SynchronousQueue<>() : new ArrayBlockingQueue<>(room),
-                Thread.ofPlatform().daemon().name(name).factory());
+    /**
+     * Gives back a request's place in its queue, once: before its answer is sent, so that whoever
+     * asks again on that answer finds the place free.
+     */
+    private static final class Permit {
+        private final AtomicInteger in;
+        private final AtomicBoolean released = new AtomicBoolean();
+
+        Permit(AtomicInteger in) {
+            this.in = in;
+        }
+
+        void release() {
+            if (released.compareAndSet(false, true)) {
+                in.decrementAndGet();
+            }
+        }
     }
 
     /**
-     * Hands {@code task} to {@code pool}; if it cannot take it, answers the request through
-     * {@code failure} (BUSY with the bound, or SERVICE_FAILED if the service stops) and returns false.
+     * Hands {@code task} to {@code pool} if fewer than {@link ManagementConfig#maxQueuedOperations()}
+     * wait besides the one in progress ({@code in} counts them); otherwise, or if the service stops,
+     * answers the request through {@code failure} (BUSY with the bound, or SERVICE_FAILED) and
+     * returns false. The task releases its permit before it answers.
      */
-    private boolean submit(ThreadPoolExecutor pool, Runnable task, BiConsumer<Reason, String> failure) {
+    private boolean submit(ExecutorService pool, AtomicInteger in, Consumer<Permit> task,
+                           BiConsumer<Reason, String> failure) {
+        if (in.incrementAndGet() > 1 + config.maxQueuedOperations()) {
+            in.decrementAndGet();
+            counters.busy.increment();
+            failure.accept(Reason.BUSY, "the management service of node '" + kernel.nodeId() + "' has "
+                    + config.maxQueuedOperations() + " operations waiting behind the one in progress"
+                    + " (maxQueuedOperations); nothing was done: ask again later");
+            return false;
+        }
+        var permit = new Permit(in);
         try {
-            pool.execute(task);
+            pool.execute(() -> {
+                try {
+                    task.accept(permit);
+                } finally {
+                    permit.release();
+                }
+            });
             return true;
         } catch (RejectedExecutionException e) {
-            if (pool.isShutdown()) {
-                failure.accept(Reason.SERVICE_FAILED, "the management service of node '" + kernel.nodeId()
-                        + "' is stopping");
-            } else {
-                counters.busy.increment();
-                failure.accept(Reason.BUSY, "the management service of node '" + kernel.nodeId() + "' has "
-                        + config.maxQueuedOperations() + " operations waiting behind the one in progress"
-                        + " (maxQueuedOperations); nothing was done: ask again later");
-            }
+            permit.release();
+            failure.accept(Reason.SERVICE_FAILED, "the management service of node '" + kernel.nodeId()
+                    + "' is stopping");
             return false;
         }
     }
@@ -254,8 +286,9 @@ public final class ManagementService implements Component {
 
     /**
      * Serves one message on the service's dispatcher without blocking: refuses (and counts) what
-     * the access list does not allow; hands an upgrade's loading, a migration away from this node
-     * and a migration's PREPARE step to the worker; starts an upgrade's swap and serves a
+     * the access list does not allow; hands an upgrade's loading and a migration away from this
+     * node to the worker, and a migration's PREPARE step to the steps thread (each queue bounded,
+     * BUSY beyond); starts an upgrade's swap and serves a
      * migration's INSTALL and HANDOVER steps here. Anything else with a sender is refused with
      * {@link Reason#BAD_REQUEST}.
      *
@@ -307,7 +340,7 @@ public final class ManagementService implements Component {
         if (refused(message, Operation.UPGRADE, UPGRADE, request.target())) {
             return;
         }
-        submit(worker, () -> upgrade(message, request, receivedNs),
+        submit(worker, operationsIn, permit -> upgrade(message, request, receivedNs, permit),
                 (reason, error) -> fail(message, request, reason, error));
     }
 
@@ -317,16 +350,18 @@ public final class ManagementService implements Component {
      * Section VI-C1). Never leaves the node (it is not a registered contents type).
      */
     private record Prepared(Message message, UpgradeRequest request, Shell shell, ImplementationLoader.Loaded loaded,
-                            long loadNs, long receivedNs, CompletableFuture<Long> firstHandling)
+                            long loadNs, long receivedNs, CompletableFuture<Long> firstHandling,
+                            CompletableFuture<Void> swapped)
             implements io.etherware.core.message.Contents {
     }
 
     /** Worker thread: resolve and load, then hand the swap back to the dispatcher. */
-    private void upgrade(Message message, UpgradeRequest request, long receivedNs) {
+    private void upgrade(Message message, UpgradeRequest request, long receivedNs, Permit permit) {
         Shell shell;
         try {
             shell = localShell(request.target());
         } catch (LoadFailure e) {
+            permit.release();
             fail(message, request, e.reason(), e.getMessage());
             return;
         }
@@ -335,9 +370,11 @@ public final class ManagementService implements Component {
         try {
             loaded = loader.load(request.className(), request.jarPath(), request.configuration());
         } catch (LoadFailure e) {
+            permit.release();
             fail(message, request, e.reason(), e.getMessage());
             return;
         } catch (RuntimeException | LinkageError e) {
+            permit.release();
             fail(message, request, Reason.CLASS_NOT_LOADABLE, "loading '" + request.className() + "' failed: " + e);
             return;
         }
@@ -345,12 +382,23 @@ public final class ManagementService implements Component {
         // Armed here, not on the dispatcher: the timer's bookkeeping stays out of the swap gap.
         var firstHandling = new CompletableFuture<Long>();
         firstHandling.completeOnTimeout(SwapTimings.UNKNOWN_NS, config.firstMessageWaitNs(), TimeUnit.NANOSECONDS);
+        var swapped = new CompletableFuture<Void>();
         try {
             context.send(context.self(), new Prepared(message, request, shell, loaded, loadNs, receivedNs,
-                    firstHandling), message.qos());
+                    firstHandling, swapped), message.qos());
         } catch (RuntimeException e) {
             loaded.discard();
+            permit.release();
             fail(message, request, Reason.SERVICE_FAILED, "the management service could not schedule the swap: " + e);
+            return;
+        }
+        // One operation at a time: the next waits until this swap is done (or given up waiting for).
+        try {
+            swapped.get(config.settleWaitNs() + config.migrationStepTimeoutNs(), TimeUnit.NANOSECONDS);
+        } catch (ExecutionException | TimeoutException e) {
+            // Answered by the swap's own continuation; the next operation may go.
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
         }
     }
 
@@ -376,12 +424,14 @@ public final class ManagementService implements Component {
                     Duration.ofNanos(config.settleWaitNs()));
         } catch (RuntimeException e) {
             loaded.discard();
+            prepared.swapped().complete(null);
             fail(message, request, Reason.UNKNOWN_COMPONENT, "component '" + shell.profile() + "' went away: " + e);
             return;
         }
         // Not ...Async: on success this runs inside the swap and must cost nothing; only a failure
         // (the slow path) goes to the worker.
         swap.whenComplete((timings, error) -> {
+            prepared.swapped().complete(null);
             if (error != null) {
                 continuations.execute(() -> rolledBack(message, request, shell, loaded, oldImplementation, error));
             }
@@ -431,29 +481,35 @@ public final class ManagementService implements Component {
         if (refused(message, Operation.MIGRATE, MIGRATE, request.target())) {
             return;
         }
-        submit(worker, () -> migrate(message, request, receivedNs),
+        submit(worker, operationsIn, permit -> migrate(message, request, receivedNs, permit),
                 (reason, error) -> failMigration(message, request.target(), reason, error));
     }
 
     /** Worker thread: the whole migration, blocking for the target's answers. */
-    private void migrate(Message message, MigrateRequest request, long receivedNs) {
+    private void migrate(Message message, MigrateRequest request, long receivedNs, Permit permit) {
+        MigrationResult result;
         try {
             Shell shell = localShell(request.target());
-            MigrationResult result = migrationSource.migrate(shell, request, receivedNs);
-            installed(result.target(), null);
-            counters.migrated.increment();
-            log.info("migrated '{}' to '{}' ({} held messages): prepare {} us, quiesce {} us, transfer {} us,"
-                    + " relocate {} us, gap {}", result.target(), result.toNode(), result.heldMessages(),
-                    result.prepareNs() / 1_000, result.quiesceNs() / 1_000, result.transferNs() / 1_000,
-                    result.relocateNs() / 1_000, result.gapNs() < 0 ? "unknown" : result.gapNs() / 1_000 + " us");
-            if (message.hasSender()) {
-                context.reply(message, result);
-            }
+            result = migrationSource.migrate(shell, request, receivedNs);
         } catch (LoadFailure e) {
+            permit.release();
             failMigration(message, request.target(), e.reason(), e.getMessage());
+            return;
         } catch (RuntimeException e) {
+            permit.release();
             log.error("migration of '{}' failed unexpectedly", request.target(), e);
             failMigration(message, request.target(), Reason.SERVICE_FAILED, "the migration failed unexpectedly: " + e);
+            return;
+        }
+        installed(result.target(), null);
+        counters.migrated.increment();
+        log.info("migrated '{}' to '{}' ({} held messages): prepare {} us, quiesce {} us, transfer {} us,"
+                + " relocate {} us, gap {}", result.target(), result.toNode(), result.heldMessages(),
+                result.prepareNs() / 1_000, result.quiesceNs() / 1_000, result.transferNs() / 1_000,
+                result.relocateNs() / 1_000, result.gapNs() < 0 ? "unknown" : result.gapNs() / 1_000 + " us");
+        permit.release();
+        if (message.hasSender()) {
+            context.reply(message, result);
         }
     }
 
@@ -491,14 +547,21 @@ public final class ManagementService implements Component {
             }
             return;
         }
-        submit(steps, () -> {
+        submit(steps, stepsIn, permit -> {
+            MigrationStepDone done;
             try {
-                context.reply(message, migrationTarget.prepare(step));
+                done = migrationTarget.prepare(step);
             } catch (LoadFailure e) {
+                permit.release();
                 failMigration(message, step.target(), e.reason(), e.getMessage());
+                return;
             } catch (RuntimeException e) {
+                permit.release();
                 failMigration(message, step.target(), Reason.SERVICE_FAILED, operation + " failed: " + e);
+                return;
             }
+            permit.release();
+            context.reply(message, done);
         }, (reason, error) -> failMigration(message, step.target(), reason, error));
     }
 

@@ -176,15 +176,17 @@ public final class NetworkMessenger implements AutoCloseable {
 
     /**
      * For a migration away from this node: {@code profile} is registered to {@code route} (built
-     * on {@link #routeTo}); from the moment a node announces the profile, route it as any announced
-     * profile instead, so that it follows the component if it moves on. The switch is one step and
-     * keeps each sender's order.
+     * on {@link #routeTo}{@code (nodeId)}); from the moment the announcements route the profile to
+     * that same node, route it as any announced profile instead, so that it follows the component
+     * if it moves on. The switch is one step and keeps each sender's order.
      *
      * @param profile the exact profile of the component that moved
      * @param route   the route registered for it now; if another is registered by then, nothing changes
+     * @param nodeId  the node {@code route} leads to
      */
-    public void followAnnouncements(Profile profile, RemoteRoute route) {
-        engine.adoptRoute(Objects.requireNonNull(profile, "profile"), Objects.requireNonNull(route, "route"));
+    public void followAnnouncements(Profile profile, RemoteRoute route, String nodeId) {
+        engine.adoptRoute(Objects.requireNonNull(profile, "profile"), Objects.requireNonNull(route, "route"),
+                Objects.requireNonNull(nodeId, "nodeId"));
     }
 
     /**

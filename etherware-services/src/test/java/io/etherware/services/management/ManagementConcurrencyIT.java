@@ -45,11 +45,9 @@ class ManagementConcurrencyIT {
                 MigrationResult rightMoved = right.get(60, TimeUnit.SECONDS);
                 assertEquals(rightFrom, leftMoved.toNode());
                 assertEquals(leftFrom, rightMoved.toNode());
-                // Far below the step timeout: no step waited for the other node's migration to fail.
-                assertTrue(leftMoved.totalNs() < TimeUnit.SECONDS.toNanos(5), "left took " + leftMoved);
-                assertTrue(rightMoved.totalNs() < TimeUnit.SECONDS.toNanos(5), "right took " + rightMoved);
             }
             assertEquals(10, a.management.migratedCount() + b.management.migratedCount(), "five each way");
+            // Before the steps had a thread of their own, each waited for the other's step timeout and failed.
             assertEquals(0, a.management.failedCount() + b.management.failedCount());
         }
     }

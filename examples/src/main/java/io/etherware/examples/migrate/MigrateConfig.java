@@ -4,6 +4,7 @@ import io.etherware.examples.scenario.PlantWiring;
 import io.etherware.services.management.AccessRule;
 import io.etherware.services.management.ManagementConfig;
 import java.nio.file.Path;
+import java.time.Duration;
 import java.util.Objects;
 import java.util.Set;
 
@@ -70,10 +71,18 @@ public record MigrateConfig(long durationNs, long periodNs, long migrateAtNs, do
         return managementBuilder(peer).build();
     }
 
+    /**
+     * How long the scenarios' management services wait for the controller to have no reading in
+     * flight before they hold it (migration) or swap its logic (upgrade): a few control periods
+     * more than the default, so that even a loaded machine's late reply reaches the logic that
+     * asked, and no cycle is lost.
+     */
+    public static final Duration SETTLE_WAIT = Duration.ofMillis(500);
+
     /** {@link #management}'s builder, for a node that allows more. */
     public static ManagementConfig.Builder managementBuilder(String peer) {
         return ManagementConfig.builder().allowRemote(peer, Set.of(AccessRule.Operation.MIGRATE), "controller")
-                .allowUnauthenticatedLinks(true);
+                .allowUnauthenticatedLinks(true).settleWait(SETTLE_WAIT);
     }
 
     /** A copy with the migration at another time. */

@@ -134,7 +134,7 @@ public final class UpgradeScenario {
                 PendulumRig rig = new PendulumRig("upgrade", run::scheduler, initial, v1, run.cycles,
                         new PlantWiring(config.baudRate()))) {
             Notifier notifier = Notifier.install(rig.node(), NotifierConfig.defaults());
-            ManagementService.install(rig.node(), ManagementConfig.builder()
+            ManagementService.install(rig.node(), ManagementConfig.builder().settleWait(MigrateConfig.SETTLE_WAIT)
                     .allowDirectory(plugin.jar().getParent()).trustedSigner(plugin.certificate()).build());
             String setup = "Etherware-RT: RealtimeScheduler: Table II (0: OTHER, 1-3: FIFO 80/70/60), Algorithm 1;"
                     + " controller V1 " + v1.name() + " " + v1.polesRadPerS();

@@ -13,8 +13,8 @@ import java.util.concurrent.atomic.AtomicLong;
  * urgency, see {@link KernelCore#PEN_OFFSET}), because whatever comes through the source was sent
  * before what comes here directly. The admission waits for the number of messages the source
  * says it forwarded, since its request may overtake some of them on the way; the source sends to
- * the component's own profile from that count on, so at the admission the arrival profile has
- * served its turn and is unregistered.
+ * the component's own profile from that count on, so once that many are in, the arrival profile
+ * has served its turn and is unregistered.
  *
  * <p>Thread-safety: senders call {@link #pens} and {@link #arrived}, the component's owner
  * {@link #leftPenned}, the management service {@link #admitAfter}; all lock-free.
@@ -24,15 +24,21 @@ final class ArrivalPen {
     private final Profile arrival;
     /** Releases the component's gate, once. */
     private final Runnable release;
+    /** Unregisters the arrival profile, once every message the source sent to it is in. */
+    private final Runnable retire;
     private final AtomicBoolean admission = new AtomicBoolean();
+    private final AtomicBoolean retirement = new AtomicBoolean();
     private final AtomicLong arrivals = new AtomicLong();
     private final AtomicInteger penned = new AtomicInteger();
     private volatile boolean admitted;
     private volatile long admitAt = Long.MAX_VALUE;
+    /** The source's count (the first admission's): until it is in, the arrival profile stays. */
+    private volatile long retireAt = Long.MAX_VALUE;
 
-    ArrivalPen(Profile arrival, Runnable release) {
+    ArrivalPen(Profile arrival, Runnable release, Runnable retire) {
         this.arrival = arrival;
         this.release = release;
+        this.retire = retire;
     }
 
     /** The profile the source forwards to. */
@@ -45,23 +51,30 @@ final class ArrivalPen {
         return message.profile().equals(arrival);
     }
 
-    /** Admits once {@code forwardedCount} messages to the arrival profile have been submitted. */
+    /**
+     * Admits once {@code forwardedCount} messages to the arrival profile have been submitted. The
+     * first call gives the source's count; a later, lower one admits earlier (a forwarded message
+     * refused on the way would never come), but the arrival profile stays registered until the
+     * first call's count is in, so a message that was only late is still delivered.
+     */
     void admitAfter(long forwardedCount) {
-        admitAt = forwardedCount;
-        if (arrivals.get() >= forwardedCount) {
-            admitOnce();
+        if (retireAt == Long.MAX_VALUE) {
+            retireAt = forwardedCount;
         }
+        admitAt = Math.min(admitAt, forwardedCount);
+        check(arrivals.get());
     }
 
     /** After a job for the arrival profile was submitted: admits if it was the last one awaited. */
     void arrived() {
-        if (arrivals.incrementAndGet() >= admitAt) {
-            admitOnce();
-        }
+        check(arrivals.incrementAndGet());
     }
 
-    private void admitOnce() {
-        if (admission.compareAndSet(false, true)) {
+    private void check(long arrived) {
+        if (arrived >= retireAt && retirement.compareAndSet(false, true)) {
+            retire.run(); // before the release: once admitted, nothing addresses the arrival profile
+        }
+        if (arrived >= admitAt && admission.compareAndSet(false, true)) {
             admitted = true;
             release.run();
         }

@@ -542,8 +542,8 @@ public final class KernelCore implements ComponentHost, JobRunner {
                         + " only at a running node");
             }
             shell = new LocalShell(this, profile, factory, config.supervision());
-            // Held before it is reachable: nothing reaches it unheld. Once admitted, every message
-            // the source forwarded to the arrival profile is in: the profile has served its turn.
+            // Held before it is reachable: nothing reaches it unheld. Once every message the source
+            // forwarded to the arrival profile is in, the profile has served its turn.
             LocalShell arrived = shell;
             shell.arriveHeld(arrival, onFirstHandling, () -> registry.unregister(arrival, arrived.endpoint()));
             registry.register(arrival, shell.endpoint());

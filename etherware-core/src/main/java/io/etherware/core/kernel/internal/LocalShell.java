@@ -11,6 +11,7 @@ import io.etherware.core.message.Profile;
 import io.etherware.core.scheduler.Job;
 import java.lang.invoke.MethodHandles;
 import java.lang.invoke.VarHandle;
+import java.util.ArrayDeque;
 import java.util.List;
 import java.util.Objects;
 import java.util.concurrent.CompletableFuture;
@@ -100,10 +101,12 @@ public final class LocalShell implements Shell {
 
     /** Requests of this component whose outcome has not been handed to it yet. */
     private final AtomicInteger awaitingOutcomes = new AtomicInteger();
-    /** A hold or swap that waits for the component to be quiescent ({@link #whenSettled}); owner. */
-    private Runnable settledAction;
-    /** When that action stops waiting for outcomes ({@link System#nanoTime()} scale); owner. */
-    private long settledByNs;
+    /** A hold or swap waiting for the component to be quiescent, until {@code byNs} at the latest. */
+    private record Pending(Runnable action, long byNs) {
+    }
+
+    /** The holds and swaps waiting for quiescence ({@link #whenSettled}), in request order; owner. */
+    private final ArrayDeque<Pending> pendingActions = new ArrayDeque<>();
 
     private ComponentState lastSnapshot; // owner
     /** When the current logic's last handling ended; for a timed swap's gap. */
@@ -233,8 +236,8 @@ public final class LocalShell implements Shell {
             if (counted) {
                 leftJob(job);
             }
-            if (settledAction != null) {
-                whenSettled(settledAction, settledByNs, false);
+            if (!pendingActions.isEmpty()) {
+                runSettled(false);
             }
             gate.leave();
         }
@@ -259,21 +262,53 @@ public final class LocalShell implements Shell {
     }
 
     /**
-     * Owner, at a boundary: runs {@code action} now if {@code now}, if the component awaits no
-     * outcome of its requests, or if {@code byNs} has passed; else keeps it pending, and every
-     * later boundary tries again. The action must tolerate running after it is no longer wanted
-     * (the deadline's second try runs it anyway).
+     * Owner, at a boundary: queues {@code action} behind those already waiting, then runs, in
+     * order, every waiting action whose turn has come: all of them if the component awaits no
+     * outcome of its requests, else those whose {@code byNs} has passed (or all, if {@code now}),
+     * stopping at the first that must wait, so that a later hold or swap never runs before an
+     * earlier one. Every later boundary tries again. An action must tolerate running after it is
+     * no longer wanted (the deadline's timer tries again too).
      */
     void whenSettled(Runnable action, long byNs, boolean now) {
-        if (!now && awaitingOutcomes.get() > 0 && kernel.clock().nanoTime() - byNs < 0) {
-            settledAction = action;
-            settledByNs = byNs;
-            return;
+        pendingActions.addLast(new Pending(action, byNs));
+        runSettled(now);
+    }
+
+    /** Owner, at a boundary: the waiting actions whose turn has come, in order. */
+    private void runSettled(boolean now) {
+        while (!pendingActions.isEmpty()) {
+            Pending head = pendingActions.peekFirst();
+            if (!now && awaitingOutcomes.get() > 0 && kernel.clock().nanoTime() - head.byNs() < 0) {
+                return;
+            }
+            pendingActions.pollFirst();
+            head.action().run();
         }
-        if (settledAction == action) {
-            settledAction = null;
+    }
+
+    /**
+     * Owner, at a boundary: the deadline of {@code action} has passed; runs it and every action
+     * queued before it (those, if still pending, are due no later), in order.
+     */
+    void settleDeadline(Runnable action) {
+        boolean queued = false;
+        for (Pending pending : pendingActions) {
+            if (pending.action() == action) {
+                queued = true;
+                break;
+            }
         }
-        action.run();
+        if (!queued) {
+            return; // it ran already
+        }
+        while (!pendingActions.isEmpty()) {
+            Pending head = pendingActions.pollFirst();
+            head.action().run();
+            if (head.action() == action) {
+                break;
+            }
+        }
+        runSettled(false);
     }
 
     /** A counted job ran or was forwarded. */
@@ -293,14 +328,11 @@ public final class LocalShell implements Shell {
     /**
      * Before start, by the thread that adds a migrated component (it owns the gate until start):
      * keep arrivals from the start on, report the first handling to {@code probe}, and pen the
-     * messages that do not come to {@code arrivalProfile} (see {@link ArrivalPen}); at the
-     * admission, release the gate, then run {@code onAdmitted}.
+     * messages that do not come to {@code arrivalProfile} (see {@link ArrivalPen}); once every
+     * message the source sent there is in, run {@code onAllArrived}.
      */
-    void arriveHeld(Profile arrivalProfile, LongConsumer probe, Runnable onAdmitted) {
-        pen = new ArrivalPen(arrivalProfile, () -> {
-            gate.release();
-            onAdmitted.run();
-        });
+    void arriveHeld(Profile arrivalProfile, LongConsumer probe, Runnable onAllArrived) {
+        pen = new ArrivalPen(arrivalProfile, gate::release, onAllArrived);
         gate.hold();
         firstHandlingProbe = probe;
     }

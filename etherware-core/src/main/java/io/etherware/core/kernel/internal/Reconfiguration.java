@@ -117,7 +117,7 @@ final class Reconfiguration {
             // Without a boundary after the deadline (an idle component waiting for a lost reply).
             timer.schedule(() -> {
                 if (!done.isDone()) {
-                    shell.atBoundary(() -> shell.whenSettled(action, deadlineNs, true));
+                    shell.atBoundary(() -> shell.settleDeadline(action));
                 }
             }, waitNs);
         }

@@ -152,7 +152,7 @@ public final class MigrationSource {
         // messages sent to the arrival profile are in; from the seal on, they go to the profile,
         // and once the target's announcement is here, along the route that follows it.
         long forwarded = route.seal();
-        network.followAnnouncements(profile, route);
+        network.followAnnouncements(profile, route, toNode);
         long firstEpochNs = -1;
         String implementation = className;
         try {

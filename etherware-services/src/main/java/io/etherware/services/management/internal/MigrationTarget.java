@@ -32,7 +32,8 @@ import org.slf4j.LoggerFactory;
  * {@link ManagementConfig#handoverWaitNs()} is removed again: its source has resumed it by then.
  *
  * <p>Threading: {@link #prepare} loads code and runs constructors, so it runs on the management
- * service's worker. {@link #install} runs the component's {@code restore} and {@code onStart}
+ * service's thread for steps into this node (not its worker, which may be busy with a migration
+ * away that waits for the other node). {@link #install} runs the component's {@code restore} and {@code onStart}
  * (which should be quick, as in an upgrade) and {@link #handover} is quick: both run on the
  * service's dispatcher, because they are on the migration gap's path.
  */
@@ -59,11 +60,11 @@ public final class MigrationTarget {
     private final Map<Profile, Arrived> arrived = new ConcurrentHashMap<>();
 
     /**
-     * @param continuations where answers that wait are assembled (the service's worker)
+     * @param continuations where answers that wait are assembled (the service's steps thread)
      * @param installed     told when a migrated component is handed over, with its jar loader
      */
-    public MigrationTarget(ComponentHost kernel, ManagementConfig config, ImplementationLoader loader, Executor continuations,
-                           BiConsumer<Profile, URLClassLoader> installed) {
+    public MigrationTarget(ComponentHost kernel, ManagementConfig config, ImplementationLoader loader,
+                           Executor continuations, BiConsumer<Profile, URLClassLoader> installed) {
         this.kernel = kernel;
         this.config = config;
         this.loader = loader;
@@ -71,7 +72,7 @@ public final class MigrationTarget {
         this.installed = installed;
     }
 
-    /** Worker: loads the class and constructs the instance; a later prepare of the profile replaces it. */
+    /** Steps thread: loads the class and constructs the instance; a later prepare of the profile replaces it. */
     public MigrationStepDone prepare(MigrationStep step) throws LoadFailure {
         Profile profile = step.target();
         if (hostsLocally(profile)) {

@@ -399,8 +399,8 @@ public final class Engine {
     }
 
     /** See {@link RouteTable#adopt}. */
-    public void adoptRoute(Profile profile, RemoteRoute route) {
-        routes.adopt(profile, route);
+    public void adoptRoute(Profile profile, RemoteRoute route, String nodeId) {
+        routes.adopt(profile, route, nodeId);
     }
 
     // ---------------------------------------------------------------- the control thread

@@ -45,8 +45,12 @@ final class RouteTable {
     private final LongAdder refused;
     private final Map<Profile, ProfileRoute> routes = new HashMap<>();
     private final Map<String, Set<Profile>> byPeer = new HashMap<>();
-    /** Routes a migration registered, to be replaced by the announced route of their profile. */
-    private final Map<Profile, RemoteRoute> provisional = new HashMap<>();
+    /** A route a migration registered, to be replaced by the announced route once it leads there. */
+    private record Provisional(RemoteRoute route, String nodeId) {
+    }
+
+    /** The routes migrations registered, by profile, until the announced route takes over. */
+    private final Map<Profile, Provisional> provisional = new HashMap<>();
     private long refusalsLogged;
 
     /**
@@ -149,6 +153,7 @@ final class RouteTable {
     /** The peer is gone for good (grace expired, or the messenger closes): unroute its profiles. */
     synchronized void forget(Peer peer) {
         announce(peer, List.of());
+        provisional.values().removeIf(left -> left.nodeId().equals(peer.nodeId));
     }
 
     /** The registry changed for {@code profile} under our feet (a local component came or went). */
@@ -162,13 +167,14 @@ final class RouteTable {
 
     /**
      * {@code profile} is registered to {@code route}, which a migration away from this node left
-     * (it leads to the target node): replace it with the route that follows the nodes announcing
-     * the profile, now if one does, else when one does. In one step, so no send finds the profile
-     * unregistered; both routes queue for the target on the same streams, so no message overtakes
-     * another of its sender.
+     * (it leads to node {@code nodeId}, the target): replace it with the route that follows the
+     * nodes announcing the profile, as soon as that route leads to the same node (now, or when
+     * the target's announcement comes). In one step, so no send finds the profile unregistered;
+     * both routes then queue for the target on the same streams, so no message overtakes another
+     * of its sender. Forgotten if the target is forgotten first.
      */
-    synchronized void adopt(Profile profile, RemoteRoute route) {
-        provisional.put(profile, route);
+    synchronized void adopt(Profile profile, RemoteRoute route, String nodeId) {
+        provisional.put(profile, new Provisional(route, nodeId));
         ProfileRoute announced = routes.get(profile);
         if (announced != null) {
             sync(announced);
@@ -208,10 +214,13 @@ final class RouteTable {
             route.owner = first;
         }
 
-        RemoteRoute left = route.registered ? null : provisional.remove(route.profile);
-        if (left != null && registry.replaceRemote(route.profile, left, route)) {
-            route.registered = true;
-            route.shadowLogged = false;
+        Provisional left = route.registered ? null : provisional.get(route.profile);
+        if (left != null && first.nodeId.equals(left.nodeId())) {
+            provisional.remove(route.profile);
+            if (registry.replaceRemote(route.profile, left.route(), route)) {
+                route.registered = true;
+                route.shadowLogged = false;
+            }
         }
         if (!route.registered) {
             try {
