@@ -32,7 +32,6 @@ import io.etherware.core.time.Durations;
 import io.etherware.core.time.NodeClock;
 import java.time.Duration;
 import java.util.ArrayList;
-import java.util.Arrays;
 import java.util.Comparator;
 import java.util.List;
 import java.util.Objects;
@@ -83,9 +82,8 @@ public final class KernelCore implements ComponentHost, JobRunner {
     private final ProfileTable registry = new ProfileTable();
     private final RequestTable requests;
     private final Reconfiguration reconfiguration;
-    /** What sees every message sent; copy-on-write, changed under this object's lock. */
-    private volatile MessageTap[] taps = new MessageTap[0];
-    private final Set<MessageTap> tapFailuresLogged = ConcurrentHashMap.newKeySet();
+    /** What sees every message sent. */
+    private final Taps taps;
     private final AtomicLong messageSequence = new AtomicLong();
     private final AtomicLong jobSequence = new AtomicLong();
     /** Bytes of queued messages from the network, by the node they came through. */
@@ -116,6 +114,7 @@ public final class KernelCore implements ComponentHost, JobRunner {
         this.urgency = scheduler.urgency().thenComparingLong(Job::sequence);
         this.requests = new RequestTable(nodeId, this::deliverOutcome, this::mayAnswer);
         this.reconfiguration = new Reconfiguration(clock, registry, requests);
+        this.taps = new Taps(nodeId);
         registerContents(config.contentsTypes());
     }
 
@@ -170,10 +169,7 @@ public final class KernelCore implements ComponentHost, JobRunner {
         if (state == NodeState.CREATED) {
             throw new IllegalStateException("node '" + nodeId + "' is not started: call start() before sending");
         }
-        MessageTap[] seeing = taps;
-        if (seeing.length != 0) {
-            tell(seeing, message);
-        }
+        taps.tell(message);
         MessageId correlationId = message.correlationId();
         if (correlationId != null && nodeId.equals(correlationId.nodeId()) && requests.interceptReply(message)) {
             return;
@@ -188,33 +184,14 @@ public final class KernelCore implements ComponentHost, JobRunner {
         }
     }
 
-    private void tell(MessageTap[] seeing, Message message) {
-        for (MessageTap tap : seeing) {
-            try {
-                tap.seen(message);
-            } catch (RuntimeException e) {
-                if (tapFailuresLogged.add(tap)) {
-                    log.warn("node {}: message tap {} threw (logged once; the message is delivered anyway)", nodeId,
-                            tap, e);
-                }
-            }
-        }
-    }
-
     /** Adds a tap; see {@link MessageTap}. */
-    public synchronized void addTap(MessageTap tap) {
-        Objects.requireNonNull(tap, "tap");
-        MessageTap[] next = Arrays.copyOf(taps, taps.length + 1);
-        next[taps.length] = tap;
-        taps = next;
+    public void addTap(MessageTap tap) {
+        taps.add(tap);
     }
 
     /** Removes a tap; it sees no message sent after this returns. */
-    public synchronized boolean removeTap(MessageTap tap) {
-        List<MessageTap> left = new ArrayList<>(Arrays.asList(taps));
-        boolean removed = left.remove(tap);
-        taps = left.toArray(MessageTap[]::new);
-        return removed;
+    public boolean removeTap(MessageTap tap) {
+        return taps.remove(tap);
     }
 
     private void enqueue(Message message, LocalShell shell) {
