@@ -135,7 +135,7 @@ public final class MigrationSource {
         long installedNs = kernel.clock().nanoTime();
 
         // The switch: the profile now routes to the target, the held messages go first (FIFO stream).
-        var route = new ArrivalRoute(network.routeTo(toNode), arrival);
+        var route = new ArrivalRoute(network.routeTo(toNode), arrival, profile);
         try {
             kernel.relocateAsync(profile, route).get(stepNs, TimeUnit.NANOSECONDS);
         } catch (ExecutionException | TimeoutException | InterruptedException e) {
@@ -220,12 +220,14 @@ public final class MigrationSource {
     private static final class ArrivalRoute implements RemoteRoute {
         private final RemoteRoute to;
         private final Profile arrival;
+        private final Profile profile;
         private volatile boolean sealed;
         private long forwarded; // guarded by this
 
-        ArrivalRoute(RemoteRoute to, Profile arrival) {
+        ArrivalRoute(RemoteRoute to, Profile arrival, Profile profile) {
             this.to = to;
             this.arrival = arrival;
+            this.profile = profile;
         }
 
         @Override
@@ -239,7 +241,8 @@ public final class MigrationSource {
                     }
                 }
             }
-            to.deliver(message);
+            // The exact profile: a query that resolved to it here might not resolve alike there.
+            to.deliver(message.profile().equals(profile) ? message : message.withProfile(profile));
         }
 
         /** Ends the forwarding to the arrival profile; returns how many messages went there. */
