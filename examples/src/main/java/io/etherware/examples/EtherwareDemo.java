@@ -2,6 +2,7 @@ package io.etherware.examples;
 
 import io.etherware.examples.bench.BenchCommand;
 import io.etherware.examples.migrate.ControlNodeCommand;
+import io.etherware.examples.serial.DspBoardCommand;
 import io.etherware.examples.migrate.MigrateCommand;
 import io.etherware.examples.netstress.NetStressCommand;
 import io.etherware.examples.netstress.NetStressNodeCommand;
@@ -30,7 +31,8 @@ import picocli.CommandLine.Spec;
 @Command(name = "etherware-demo", mixinStandardHelpOptions = true, versionProvider = EtherwareDemo.Version.class,
         description = "The Etherware paper's experiments on a simulated inverted pendulum.",
         subcommands = {StressCommand.class, NetStressCommand.class, UpgradeCommand.class, MigrateCommand.class,
-            BenchCommand.class, ControlNodeCommand.class, NetStressNodeCommand.class, CommandLine.HelpCommand.class},
+            BenchCommand.class, DspBoardCommand.class, ControlNodeCommand.class, NetStressNodeCommand.class,
+            CommandLine.HelpCommand.class},
         footer = {"", "Plots and CSVs go to target/scenarios/<scenario>/ unless --out says otherwise;"
                 + " the bench writes target/bench/report.md and report.json."})
 public final class EtherwareDemo implements Runnable {

@@ -15,9 +15,12 @@ import java.util.Objects;
  * @param answerNs     when the answer (or the failure) came
  * @param handOver     how the control loop crossed from node 2 to node 1, or null if it did not
  * @param finalHost    the node hosting the controller at the end, as node 1's registry says
+ * @param releasesSkipped the controller's releases the Notifier skipped in the whole run (it woke
+ *                     too late, the controller was still busy, or the Tick was undeliverable): no
+ *                     Tick went out for them, so they have no cycle
  */
 public record MigrateOutcome(ScenarioRun run, MigrationResult result, String failure, long requestNs, long answerNs,
-        HandOver handOver, String finalHost) {
+        HandOver handOver, String finalHost, long releasesSkipped) {
 
     public MigrateOutcome {
         Objects.requireNonNull(run, "run");

@@ -212,7 +212,8 @@ public final class MigrateScenario {
         threads.grants().forEach(grant -> notes.add("  " + grant.toLine()));
         ScenarioRun run = new ScenarioRun("migrate", "node 2 → node 1 migration", periodNs, originNs, firstReleaseNs,
                 endNs, probe.samples(), cycles.cycles(), events.snapshot(), notes);
-        return new MigrateOutcome(run, result, failure, requestNs, answerNs, handOver, finalHost);
+        return new MigrateOutcome(run, result, failure, requestNs, answerNs, handOver, finalHost,
+                ticks.skippedReleases());
     }
 
     /**

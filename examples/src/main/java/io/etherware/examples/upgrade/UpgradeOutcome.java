@@ -15,9 +15,12 @@ import java.util.Objects;
  * @param v2FromNs  the release of V2's first cycle (the answer's time if V2 never ran)
  * @param answerNs  when the answer (or the failure) came; the service waits for V2's first
  *                  message before it answers, to measure the swap gap
+ * @param releasesSkipped the controller's releases the Notifier skipped in the whole run (it woke
+ *                  too late, the controller was still busy, or the Tick was undeliverable): no
+ *                  Tick went out for them, so they have no cycle
  */
 public record UpgradeOutcome(ScenarioRun run, UpgradeResult result, String failure, long requestNs, long v2FromNs,
-        long answerNs) {
+        long answerNs, long releasesSkipped) {
 
     public UpgradeOutcome {
         Objects.requireNonNull(run, "run");

@@ -256,6 +256,7 @@ public final class UpgradeScenario {
         }
         ScenarioRun scenarioRun = new ScenarioRun("upgrade", "V1 → V2 upgrade", periodNs, originNs, firstReleaseNs,
                 endNs, probe.samples(), recorded, events.snapshot(), notes);
-        return new UpgradeOutcome(scenarioRun, result, failure, requestNs, Math.min(answerNs, v2FromNs), answerNs);
+        return new UpgradeOutcome(scenarioRun, result, failure, requestNs, Math.min(answerNs, v2FromNs), answerNs,
+                ticks.skippedReleases());
     }
 }

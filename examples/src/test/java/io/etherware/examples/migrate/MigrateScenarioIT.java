@@ -63,7 +63,11 @@ class MigrateScenarioIT {
         assertTrue(result.gapNs() >= 0 && pauseNs < run.periodNs(),
                 () -> "paused " + pauseNs + " ns (gap " + result.gapNs() + " ns), control period " + run.periodNs()
                         + " ns");
-        assertEquals(0, handOver.lostCycles(), () -> "cycles without a command across the migration; the cycles"
+        // A release the Notifier itself skipped (its thread woke too late: a stall of the JVM or the
+        // machine, counted) has no Tick and so no cycle; any other missing cycle is the migration's.
+        assertTrue(handOver.lostCycles() <= outcome.releasesSkipped(), () -> handOver.lostCycles()
+                + " cycles without a command across the migration, " + outcome.releasesSkipped()
+                + " releases skipped by the Notifier in the whole run; the cycles"
                 + " around it (a cycle missing here had no Tick handled): " + run.cycles().stream()
                 .filter(c -> c.cycle() >= handOver.lastRemoteCycle() - 1 && c.cycle() <= handOver.firstLocalCycle() + 1)
                 .map(c -> c.cycle() + " " + c.outcome() + " released " + c.releaseNs() + " started +"
