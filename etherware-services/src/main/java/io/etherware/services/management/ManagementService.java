@@ -213,7 +213,7 @@ public final class ManagementService implements Component {
         this.migrationTarget = new MigrationTarget(kernel, config, loader, inlineWhenRefused(steps), this::installed);
     }
 
-    /** Runs a task on {@code pool}, or where it completes if the pool is full or stopped. */
+    /** Runs a task on {@code pool}, or where it completes if the pool has stopped. */
     private static Executor inlineWhenRefused(ExecutorService pool) {
         // After onStop, an operation in flight still answers: on the thread that completes it.
         return task -> {
@@ -247,10 +247,10 @@ public final class ManagementService implements Component {
     /**
      * Hands {@code task} to {@code pool} if fewer than {@link ManagementConfig#maxQueuedOperations()}
      * wait besides the one in progress ({@code in} counts them); otherwise, or if the service stops,
-     * answers the request through {@code failure} (BUSY with the bound, or SERVICE_FAILED) and
-     * returns false. The task releases its permit before it answers.
+     * answers the request through {@code failure} (BUSY with the bound, or SERVICE_FAILED). The
+     * task releases its permit before it answers.
      */
-    private boolean submit(ExecutorService pool, AtomicInteger in, Consumer<Permit> task,
+    private void submit(ExecutorService pool, AtomicInteger in, Consumer<Permit> task,
                            BiConsumer<Reason, String> failure) {
         if (in.incrementAndGet() > 1 + config.maxQueuedOperations()) {
             in.decrementAndGet();
@@ -258,7 +258,7 @@ public final class ManagementService implements Component {
             failure.accept(Reason.BUSY, "the management service of node '" + kernel.nodeId() + "' has "
                     + config.maxQueuedOperations() + " operations waiting behind the one in progress"
                     + " (maxQueuedOperations); nothing was done: ask again later");
-            return false;
+            return;
         }
         var permit = new Permit(in);
         try {
@@ -269,12 +269,10 @@ public final class ManagementService implements Component {
                     permit.release();
                 }
             });
-            return true;
         } catch (RejectedExecutionException e) {
             permit.release();
             failure.accept(Reason.SERVICE_FAILED, "the management service of node '" + kernel.nodeId()
                     + "' is stopping");
-            return false;
         }
     }
 

@@ -21,7 +21,6 @@ import java.util.Locale;
 import java.util.concurrent.Callable;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicBoolean;
-import java.util.concurrent.atomic.AtomicLong;
 import java.util.concurrent.locks.LockSupport;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
@@ -119,14 +118,12 @@ public final class DspBoardCommand implements Callable<Integer> {
             long startNs = clock.nanoTime();
             board.startRealTime(clock, threads.fifo("dsp-board", SimThreads.BOARD_PRIORITY),
                     AbsoluteSleeper.forClock(clock));
-            var maxAbsTheta2 = new AtomicLong(Double.doubleToLongBits(Math.abs(theta2)));
+            // Written by the sampler only, read after joining it.
+            double[] maxAbsTheta2 = {Math.abs(theta2)};
             var running = new AtomicBoolean(true);
             Thread sampler = Thread.ofPlatform().daemon().name("dsp-board-sampler").start(() -> {
                 while (running.get()) {
-                    double now = Math.abs(board.plantState().theta2Rad());
-                    if (now > Double.longBitsToDouble(maxAbsTheta2.get())) {
-                        maxAbsTheta2.set(Double.doubleToLongBits(now));
-                    }
+                    maxAbsTheta2[0] = Math.max(maxAbsTheta2[0], Math.abs(board.plantState().theta2Rad()));
                     LockSupport.parkNanos(SAMPLE_NS);
                 }
             });
@@ -135,7 +132,7 @@ public final class DspBoardCommand implements Callable<Integer> {
             }
             running.set(false);
             sampler.join(TimeUnit.SECONDS.toMillis(5));
-            double max = Double.longBitsToDouble(maxAbsTheta2.get());
+            double max = maxAbsTheta2[0];
             PendulumState end = board.plantState();
             out.println(String.format(Locale.ROOT, "%s seconds=%.1f maxAbsTheta2=%.4f fell=%b finalTheta2=%.4f"
                     + " lateCycles=%d", SUMMARY, (clock.nanoTime() - startNs) / 1e9, max, max > 0.5, end.theta2Rad(),
