@@ -1,0 +1,254 @@
+package io.etherware.deploy;
+
+import io.etherware.core.component.Component;
+import io.etherware.core.kernel.EtherwareNode;
+import io.etherware.core.kernel.ProfileResolutionException;
+import io.etherware.core.message.ContentsTypes;
+import io.etherware.deploy.internal.XmlElement;
+import io.etherware.services.management.ManagementService;
+import io.etherware.services.network.NetworkMessenger;
+import io.etherware.services.notifier.Notifier;
+import io.etherware.services.notifier.Subscription;
+import java.net.InetSocketAddress;
+import java.time.Duration;
+import java.util.ArrayDeque;
+import java.util.ArrayList;
+import java.util.Deque;
+import java.util.List;
+import java.util.Map;
+import java.util.Optional;
+import java.util.function.Supplier;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+/**
+ * A node running from a {@link Deployment}. {@link #start} opens the components' resources
+ * (through their factories), builds the node with every component, starts it, then its Notifier,
+ * its network and its management service; each Notifier subscription starts as soon as its target
+ * resolves (at once for a component of this node, when a peer announces it otherwise), on a thread
+ * of its own that waits for them. {@link #close} stops them in the reverse order: subscriptions
+ * and Notifier, network, node (with the management service and components), then the factories'
+ * resources.
+ *
+ * <p>Thread-safe: {@link #close} may be called from any thread (a shutdown hook), more than once.
+ */
+public final class DeployedNode implements AutoCloseable {
+
+    private static final Logger LOG = LoggerFactory.getLogger(DeployedNode.class);
+    /** How long the subscription thread waits per round for targets that do not resolve yet. */
+    private static final Duration RESOLVE_ROUND = Duration.ofMillis(200);
+
+    private final Deployment deployment;
+    private final Deque<AutoCloseable> resources;
+    private final EtherwareNode node;
+    private final Notifier notifier;
+    private final NetworkMessenger network;
+    private final Thread subscriber;
+    private volatile boolean closing;
+
+    private DeployedNode(Deployment deployment, Deque<AutoCloseable> resources, EtherwareNode node,
+            Notifier notifier, NetworkMessenger network) {
+        this.deployment = deployment;
+        this.resources = resources;
+        this.node = node;
+        this.notifier = notifier;
+        this.network = network;
+        List<Subscription> subscriptions = deployment.notifier().map(Deployment.NotifierPlan::subscriptions)
+                .orElse(List.of());
+        subscriber = subscriptions.isEmpty() ? null : Thread.ofPlatform().daemon()
+                .name("deploy-subscriptions@" + deployment.nodeId()).unstarted(() -> subscribeWhenResolvable(
+                        subscriptions));
+    }
+
+    /**
+     * Starts the node {@code deployment} describes.
+     *
+     * @param deployment the checked deployment
+     * @return the running node
+     * @throws DeploymentException if a component's factory refuses its settings or cannot open what
+     *                             it needs, or the node, its network or management service cannot
+     *                             start; whatever was started is closed again first
+     */
+    public static DeployedNode start(Deployment deployment) throws DeploymentException {
+        Deque<AutoCloseable> resources = new ArrayDeque<>();
+        EtherwareNode node = null;
+        NetworkMessenger network = null;
+        try {
+            var types = new ContentsTypes();
+            for (Deployment.ComponentPlan plan : deployment.components()) {
+                plan.factory().registerContents(types);
+            }
+            var suppliers = new ArrayList<Supplier<? extends Component>>();
+            for (Deployment.ComponentPlan plan : deployment.components()) {
+                suppliers.add(create(deployment, plan, resources));
+            }
+            node = EtherwareNode.builder().nodeId(deployment.nodeId()).scheduler(deployment.scheduler().factory())
+                    .contentsTypes(types).build();
+            for (int i = 0; i < suppliers.size(); i++) {
+                node.add(deployment.components().get(i).profile(), suppliers.get(i));
+            }
+            node.start();
+            EtherwareNode started = node;
+            Notifier notifier = deployment.notifier().map(plan -> Notifier.install(started, plan.config()))
+                    .orElse(null);
+            if (deployment.network().isPresent()) {
+                network = NetworkMessenger.start(node, deployment.network().get());
+            }
+            NetworkMessenger messenger = network;
+            deployment.management().ifPresent(config -> ManagementService.install(started, config, messenger));
+            var deployed = new DeployedNode(deployment, resources, node, notifier, network);
+            if (deployed.subscriber != null) {
+                deployed.subscriber.start();
+            }
+            LOG.info("node {} started from {}: scheduler {}, {} component(s){}", deployment.nodeId(),
+                    deployment.file(), deployment.scheduler().description(), deployment.components().size(),
+                    network != null ? ", listening on " + network.localAddress() : "");
+            return deployed;
+        } catch (DeploymentException | RuntimeException e) {
+            closeQuietly(network, "network");
+            closeQuietly(node, "node");
+            closeAll(resources);
+            if (e instanceof DeploymentException deploymentException) {
+                throw deploymentException;
+            }
+            throw new DeploymentException(deployment.file(), 0, 0, "node " + deployment.nodeId() + " did not start: "
+                    + e.getMessage(), e);
+        }
+    }
+
+    private static Supplier<? extends Component> create(Deployment deployment, Deployment.ComponentPlan plan,
+            Deque<AutoCloseable> resources) throws DeploymentException {
+        Supplier<? extends Component> supplier;
+        try {
+            supplier = plan.factory().create(plan.settings(), new ComponentFactory.Resources() {
+                @Override
+                public <T extends AutoCloseable> T closeAfterNode(T resource) {
+                    resources.push(resource);
+                    return resource;
+                }
+            });
+        } catch (RuntimeException e) {
+            throw new DeploymentException(deployment.file(), plan.line(), 0, "<component profile=\"" + plan.profile()
+                    + "\" class=\"" + plan.className() + "\">: its factory failed: " + e, e);
+        }
+        if (supplier == null) {
+            throw new DeploymentException(deployment.file(), plan.line(), 0, "<component profile=\"" + plan.profile()
+                    + "\">: " + plan.className() + ".create returned null", null);
+        }
+        Map<String, XmlElement> unread = plan.settings().unread();
+        if (!unread.isEmpty()) {
+            var first = unread.entrySet().iterator().next();
+            throw new DeploymentException(deployment.file(), first.getValue().line(), first.getValue().column(),
+                    "<setting name=\"" + first.getKey() + "\"> is not a setting of " + plan.className()
+                            + "; it reads " + plan.settings().readNames() + ": check the spelling", null);
+        }
+        return supplier;
+    }
+
+    /** {@return the deployment this node runs} */
+    public Deployment deployment() {
+        return deployment;
+    }
+
+    /** {@return the node} */
+    public EtherwareNode node() {
+        return node;
+    }
+
+    /** {@return the network messenger, if the deployment has a {@code <network>}} */
+    public Optional<NetworkMessenger> network() {
+        return Optional.ofNullable(network);
+    }
+
+    /** {@return the Notifier, if the deployment has a {@code <notifier>}} */
+    public Optional<Notifier> notifier() {
+        return Optional.ofNullable(notifier);
+    }
+
+    /**
+     * Where the network listens, if the deployment has a {@code <network>}.
+     *
+     * @return the bound address (the real port where the file said 0)
+     */
+    public Optional<InetSocketAddress> listenAddress() {
+        return network().map(NetworkMessenger::localAddress);
+    }
+
+    /**
+     * Stops the node in order: subscriptions and Notifier, network, node, the factories'
+     * resources. Idempotent; a step that fails is logged and the next still runs.
+     */
+    @Override
+    public synchronized void close() {
+        if (closing) {
+            return;
+        }
+        closing = true;
+        LOG.info("node {} closing", deployment.nodeId());
+        if (subscriber != null) {
+            subscriber.interrupt();
+            try {
+                subscriber.join(Duration.ofSeconds(5));
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+        }
+        closeQuietly(notifier, "notifier");
+        closeQuietly(network, "network");
+        closeQuietly(node, "node");
+        closeAll(resources);
+        LOG.info("node {} closed", deployment.nodeId());
+    }
+
+    private void subscribeWhenResolvable(List<Subscription> subscriptions) {
+        var waiting = new ArrayList<>(subscriptions);
+        try {
+            while (!waiting.isEmpty() && !closing) {
+                for (var it = waiting.iterator(); it.hasNext(); ) {
+                    Subscription subscription = it.next();
+                    boolean resolvable = resolvesHere(subscription)
+                            || network != null && network.awaitResolvable(subscription.target(), RESOLVE_ROUND);
+                    if (resolvable && !closing) {
+                        notifier.subscribe(subscription);
+                        LOG.info("subscription {}: Ticks every {} µs to {} started", subscription.name(),
+                                subscription.qos().periodNs() / 1_000, subscription.target());
+                        it.remove();
+                    }
+                }
+                if (network == null && !waiting.isEmpty()) {
+                    LOG.warn("subscription(s) {} target no component of this node and the node has no network: they"
+                            + " never start", waiting.stream().map(Subscription::name).toList());
+                    return;
+                }
+            }
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt(); // closing
+        }
+    }
+
+    private boolean resolvesHere(Subscription subscription) {
+        try {
+            node.registry().resolve(subscription.target());
+            return true;
+        } catch (ProfileResolutionException e) {
+            return false;
+        }
+    }
+
+    private static void closeAll(Deque<AutoCloseable> resources) {
+        while (!resources.isEmpty()) {
+            closeQuietly(resources.pop(), "resource");
+        }
+    }
+
+    private static void closeQuietly(AutoCloseable closeable, String what) {
+        if (closeable == null) {
+            return;
+        }
+        try {
+            closeable.close();
+        } catch (Exception e) {
+            LOG.warn("closing the {} {} failed: {}", what, closeable, e.toString());
+        }
+    }
+}
