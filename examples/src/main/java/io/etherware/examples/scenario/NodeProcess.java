@@ -172,6 +172,32 @@ public final class NodeProcess implements AutoCloseable {
         }
     }
 
+    /**
+     * Asks the node to end as {@code kill -TERM} does ({@link Process#destroy()}), for a node that
+     * runs until SIGTERM (the deployment launcher), and waits for it (forcibly after 30 s); returns
+     * the lines it printed after {@link #READY}.
+     */
+    public List<String> terminate() throws InterruptedException {
+        process.destroy();
+        return stop();
+    }
+
+    /** The lines the node printed after {@link #READY} so far. */
+    public List<String> linesSoFar() {
+        synchronized (afterReady) {
+            return List.copyOf(afterReady);
+        }
+    }
+
+    /**
+     * The node's exit status, once it ended ({@link #stop}, {@link #terminate}).
+     *
+     * @throws IllegalThreadStateException if it still runs
+     */
+    public int exitValue() {
+        return process.exitValue();
+    }
+
     /** {@link #stop()}, its output dropped. */
     @Override
     public void close() throws InterruptedException {

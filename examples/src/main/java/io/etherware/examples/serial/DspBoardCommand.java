@@ -9,9 +9,9 @@ import io.etherware.pendulum.dsp.DspBoard;
 import io.etherware.pendulum.plant.PendulumState;
 import io.etherware.pendulum.serial.JSerialCommLink;
 import io.etherware.pendulum.serial.PseudoTerminalLink;
-import io.etherware.pendulum.serial.SerialLink;
 import io.etherware.rt.platform.AbsoluteSleeper;
 import java.io.BufferedReader;
+import java.io.IOException;
 import java.io.InputStreamReader;
 import java.io.PrintWriter;
 import java.nio.charset.StandardCharsets;
@@ -19,6 +19,7 @@ import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.Locale;
 import java.util.concurrent.Callable;
+import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicBoolean;
 import java.util.concurrent.locks.LockSupport;
@@ -35,7 +36,8 @@ import picocli.CommandLine.Spec;
  * pseudo-terminal, whose device path it prints ({@code PORT /dev/pts/N}) and writes to
  * {@code --port-file}; {@code --port} serves a real port instead (e.g. one end of a null-modem
  * pair). The pendulum starts falling when the board starts: on the line {@code START} on standard
- * input, or at once with {@code --start-now}. Prints {@code READY} when the port is open, runs
+ * input, at once with {@code --start-now}, or when the node first sends a request with
+ * {@code --start-on-request}. Prints {@code READY} when the port is open, runs
  * until its standard input closes, then prints a summary line of the plant's ground truth.
  *
  * <p>Run by picocli on the main thread.
@@ -75,6 +77,10 @@ public final class DspBoardCommand implements Callable<Integer> {
     @Option(names = "--start-now", description = "Start the board at once, not on a START line.")
     private boolean startNow;
 
+    @Option(names = "--start-on-request", description = "Start the board when the node first sends it a request"
+            + " (the pendulum is held upright until the control loop runs), not on a START line.")
+    private boolean startOnRequest;
+
     @Override
     public Integer call() throws Exception {
         PlantWiring wiring;
@@ -88,14 +94,17 @@ public final class DspBoardCommand implements Callable<Integer> {
         }
         PrintWriter out = spec.commandLine().getOut();
         NodeClock clock = NodeClock.system();
-        SerialLink link;
+        if (startNow && startOnRequest) {
+            throw new ParameterException(spec.commandLine(), "--start-now and --start-on-request: choose one");
+        }
+        FirstRequestLink link;
         String devicePath;
         if (port != null) {
-            link = JSerialCommLink.open(port, baudRate);
+            link = new FirstRequestLink(JSerialCommLink.open(port, baudRate));
             devicePath = port;
         } else {
             PseudoTerminalLink pty = PseudoTerminalLink.open();
-            link = pty;
+            link = new FirstRequestLink(pty);
             devicePath = pty.slavePath();
         }
         var threads = new SimThreads();
@@ -108,12 +117,26 @@ public final class DspBoardCommand implements Callable<Integer> {
             out.println(NodeProcess.READY);
             out.flush();
             var input = new BufferedReader(new InputStreamReader(System.in, StandardCharsets.UTF_8));
-            if (!startNow) {
-                for (String line = input.readLine(); !"START".equals(line); line = input.readLine()) {
-                    if (line == null) {
-                        return 0; // closed before the start: nothing ran
+            var startLine = new CompletableFuture<Boolean>(); // true on START, false if the input closed first
+            var inputClosed = new CompletableFuture<Void>();
+            Thread.ofPlatform().daemon().name("dsp-board-input").start(() -> {
+                try {
+                    for (String line = input.readLine(); line != null; line = input.readLine()) {
+                        if (line.equals("START")) {
+                            startLine.complete(true);
+                        }
                     }
+                } catch (IOException e) {
+                    // as closed
+                } finally {
+                    startLine.complete(false);
+                    inputClosed.complete(null);
                 }
+            });
+            boolean start = startNow
+                    || (startOnRequest ? link.awaitFirstBytes(() -> !inputClosed.isDone()) : startLine.join());
+            if (!start) {
+                return 0; // closed before the start: nothing ran
             }
             long startNs = clock.nanoTime();
             board.startRealTime(clock, threads.fifo("dsp-board", SimThreads.BOARD_PRIORITY),
@@ -127,9 +150,7 @@ public final class DspBoardCommand implements Callable<Integer> {
                     LockSupport.parkNanos(SAMPLE_NS);
                 }
             });
-            while (input.read() >= 0) {
-                // runs until the input closes
-            }
+            inputClosed.join(); // runs until the input closes
             running.set(false);
             sampler.join(TimeUnit.SECONDS.toMillis(5));
             double max = maxAbsTheta2[0];
