@@ -7,5 +7,6 @@ module io.etherware.services {
     exports io.etherware.services.network;
     exports io.etherware.services.notifier;
     exports io.etherware.services.recording;
+    exports io.etherware.services.status;
     exports io.etherware.services.time;
 }

@@ -9,6 +9,7 @@ import io.etherware.services.management.ManagementService;
 import io.etherware.services.network.NetworkMessenger;
 import io.etherware.services.notifier.Notifier;
 import io.etherware.services.notifier.Subscription;
+import io.etherware.services.status.StatusService;
 import java.net.InetSocketAddress;
 import java.time.Duration;
 import java.util.ArrayDeque;
@@ -24,7 +25,8 @@ import org.slf4j.LoggerFactory;
 /**
  * A node running from a {@link Deployment}. {@link #start} opens the components' resources
  * (through their factories), builds the node with every component, starts it, then its Notifier,
- * its network and its management service; each Notifier subscription starts as soon as its target
+ * its network, its management service and its status service ({@code etherware.status[node=<id>]},
+ * which the control tool asks); each Notifier subscription starts as soon as its target
  * resolves (at once for a component of this node, when a peer announces it otherwise), on a thread
  * of its own that waits for them. {@link #close} stops them in the reverse order: subscriptions
  * and Notifier, network, node (with the management service and components), then the factories'
@@ -96,6 +98,7 @@ public final class DeployedNode implements AutoCloseable {
             }
             NetworkMessenger messenger = network;
             deployment.management().ifPresent(config -> ManagementService.install(started, config, messenger));
+            StatusService.install(node, network);
             var deployed = new DeployedNode(deployment, resources, node, notifier, network);
             if (deployed.subscriber != null) {
                 deployed.subscriber.start();
