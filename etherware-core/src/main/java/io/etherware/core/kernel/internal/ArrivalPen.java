@@ -10,7 +10,7 @@ import java.util.concurrent.atomic.AtomicLong;
  * The ordering of a component that arrives by migration ({@link KernelCore#addHeld}): its source
  * forwards to {@link #arrival}; until the admission, and then while a penned job remains, the
  * other messages for it are <em>penned</em> (their jobs sort after every forwarded one of the same
- * urgency, see {@link KernelCore#PEN_OFFSET}), because whatever comes through the source was sent
+ * urgency, see {@link Delivery#PEN_OFFSET}), because whatever comes through the source was sent
  * before what comes here directly. The admission waits for the number of messages the source
  * says it forwarded, since its request may overtake some of them on the way; the source sends to
  * the component's own profile from that count on, so once that many are in, the arrival profile

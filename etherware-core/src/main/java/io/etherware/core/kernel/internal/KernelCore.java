@@ -22,22 +22,17 @@ import io.etherware.core.message.Contents;
 import io.etherware.core.message.ContentsTypes;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageId;
-import io.etherware.core.message.Origin;
 import io.etherware.core.message.Profile;
-import io.etherware.core.message.Tick;
 import io.etherware.core.scheduler.Job;
 import io.etherware.core.scheduler.JobRunner;
 import io.etherware.core.scheduler.Scheduler;
-import io.etherware.core.time.Durations;
 import io.etherware.core.time.NodeClock;
 import java.time.Duration;
 import java.util.ArrayList;
 import java.util.Comparator;
 import java.util.List;
 import java.util.Objects;
-import java.util.Set;
 import java.util.concurrent.CompletableFuture;
-import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.ExecutionException;
 import java.util.concurrent.TimeUnit;
@@ -50,9 +45,10 @@ import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
 /**
- * The kernel of a node (paper Section III-A): resolves profiles, wraps messages into jobs for the
- * scheduler, runs jobs through the component gates ({@link LocalShell}), correlates requests,
- * tells senders about undeliverable messages and supervises failures.
+ * The kernel of a node (paper Section III-A): resolves profiles, runs jobs through the component
+ * gates ({@link LocalShell}), correlates requests and supervises failures. What becomes of a
+ * message once its destination is resolved (a job for the scheduler, a route to another node, an
+ * undeliverable notice to its sender) is {@link Delivery}'s.
  *
  * <p>The per-message path ({@link #send}, {@link #run}) takes no lock when the receiver is free,
  * logs nothing and allocates only the job (the sender allocates the message).
@@ -64,12 +60,6 @@ public final class KernelCore implements ComponentHost, JobRunner {
     private static final Logger log = LoggerFactory.getLogger(Kernel.class);
     /** Extra wait of a blocking request beyond its timeout, for the timer thread to fire. */
     private static final long BLOCKING_GRACE_NS = TimeUnit.SECONDS.toNanos(5);
-    /**
-     * Added to the sequence of a penned job (see {@link LocalShell#pens}): it then sorts after the
-     * jobs of the same urgency not penned. Far above any sequence a node reaches.
-     */
-    static final long PEN_OFFSET = 1L << 62;
-    private static final int MAX_ROUTE_REFUSALS_LOGGED = 64;
 
     private enum NodeState { CREATED, RUNNING, CLOSING, CLOSED }
 
@@ -82,22 +72,17 @@ public final class KernelCore implements ComponentHost, JobRunner {
     private final ProfileTable registry = new ProfileTable();
     private final RequestTable requests;
     private final Reconfiguration reconfiguration;
+    /** Jobs, routes and undeliverable notices for resolved messages. */
+    private final Delivery delivery;
     /** What sees every message sent. */
     private final Taps taps;
     private final AtomicLong messageSequence = new AtomicLong();
-    private final AtomicLong jobSequence = new AtomicLong();
-    /** Bytes of queued messages from the network, by the node they came through. */
-    private final ConcurrentHashMap<String, LongAdder> inboundBytes = new ConcurrentHashMap<>();
     /** Registered components in registration order. */
     private final List<LocalShell> shells = new CopyOnWriteArrayList<>();
     /** Every component added and not yet removed or moved away, for the counters. */
     private final List<LocalShell> everAdded = new CopyOnWriteArrayList<>();
     /** The counters of the components removed or moved away (handled, failed, restarts); guarded by itself. */
     private final long[] retiredCounts = new long[3];
-    private final LongAdder undeliverable = new LongAdder();
-    /** Destinations whose route refused a message, logged once each (at most {@link #MAX_ROUTE_REFUSALS_LOGGED}). */
-    private final Set<Profile> routeRefusalsLogged = ConcurrentHashMap.newKeySet();
-    private final LongAdder discarded = new LongAdder();
     private final LongAdder escalations = new LongAdder();
     private final LongAdder resets = new LongAdder();
     private final Object lifecycleLock = new Object();
@@ -112,7 +97,8 @@ public final class KernelCore implements ComponentHost, JobRunner {
         this.scheduler = Objects.requireNonNull(config.scheduler().get(), "the scheduler factory returned null");
         // Ties in arrival order, whatever the scheduler's comparator does with them.
         this.urgency = scheduler.urgency().thenComparingLong(Job::sequence);
-        this.requests = new RequestTable(nodeId, this::deliverOutcome, this::mayAnswer);
+        this.delivery = new Delivery(nodeId, nodeProfile, clock, scheduler, this::send, this::newMessageId);
+        this.requests = new RequestTable(nodeId, delivery::deliverOutcome, this::mayAnswer);
         this.reconfiguration = new Reconfiguration(clock, registry, requests);
         this.taps = new Taps(nodeId);
         registerContents(config.contentsTypes());
@@ -176,11 +162,11 @@ public final class KernelCore implements ComponentHost, JobRunner {
         }
         Endpoint endpoint = registry.lookup(message.profile());
         if (endpoint instanceof Endpoint.Local local) {
-            enqueue(message, (LocalShell) local.shell());
+            delivery.enqueue(message, (LocalShell) local.shell());
         } else if (endpoint instanceof Endpoint.Remote remote) {
-            deliverRemote(message, remote.route());
+            delivery.deliverRemote(message, remote.route());
         } else {
-            undeliverable(message, registry.explainMiss(message.profile()));
+            delivery.undeliverable(message, registry.explainMiss(message.profile()));
         }
     }
 
@@ -194,53 +180,9 @@ public final class KernelCore implements ComponentHost, JobRunner {
         return taps.remove(tap);
     }
 
-    private void enqueue(Message message, LocalShell shell) {
-        long nowNs = clock.nanoTime();
-        long releaseNs = nowNs;
-        // A local Tick is released at its scheduled time, so start latency counts from there.
-        if (message.contents() instanceof Tick tick && tick.releaseNs() <= nowNs
-                && nodeId.equals(message.messageId().nodeId())) {
-            releaseNs = tick.releaseNs();
-        } else if (message.origin() != null) {
-            // From another node: released when it was made there (its time stamp, which NetworkTime
-            // translated into this node's clock), so its deadline is absolute across nodes and the
-            // time on the wire counts (DESIGN decision 12); one that arrives late is a miss.
-            long ageNs = clock.epochNanos() - message.timeStamp();
-            if (ageNs > 0) {
-                releaseNs = nowNs - ageNs;
-            }
-        }
-        if (!shell.enterQueue()) {
-            deliverRemote(message, shell.forwardRoute()); // relocated, and nothing of it is queued here
-            return;
-        }
-        countInbound(message, +1);
-        long sequence = jobSequence.getAndIncrement();
-        if (shell.pens(message)) {
-            sequence += PEN_OFFSET;
-        }
-        Job job = new Job(message, shell.name(), shell, sequence, releaseNs);
-        if (!scheduler.submit(job)) {
-            shell.leaveQueue();
-            countInbound(message, -1);
-            discard(job);
-        }
-        ArrivalPen pen = shell.pen();
-        if (pen != null && pen.isArrival(message)) {
-            pen.arrived(); // after the submission: the admission's hand-over queues behind it
-        }
-    }
-
-    /**
-     * Counts the bytes of a message from the network while it is a queued job of a component:
-     * added when the job is made, removed when it leaves the component's queue count (ran,
-     * forwarded, or refused), the same points that keep {@link LocalShell}'s queue count exact.
-     */
+    /** See {@link Delivery#countInbound}. */
     void countInbound(Message message, int sign) {
-        Origin origin = message.origin();
-        if (origin != null && origin.wireBytes() > 0) {
-            inboundBytes.computeIfAbsent(origin.viaNodeId(), id -> new LongAdder()).add((long) sign * origin.wireBytes());
-        }
+        delivery.countInbound(message, sign);
     }
 
     /**
@@ -258,24 +200,7 @@ public final class KernelCore implements ComponentHost, JobRunner {
 
     @Override
     public long queuedBytesFrom(String viaNodeId) {
-        LongAdder bytes = inboundBytes.get(viaNodeId);
-        return bytes == null ? 0 : bytes.sum();
-    }
-
-    private void deliverRemote(Message message, RemoteRoute route) {
-        try {
-            route.deliver(message);
-        } catch (RuntimeException e) {
-            String reason = "the route to '" + message.profile() + "' refused it: " + e;
-            // A refusal is usually a mistake in the application (a contents type not registered on
-            // this node, a record the codec cannot read): say so once per destination where it shows,
-            // not only to the sender.
-            if (routeRefusalsLogged.size() < MAX_ROUTE_REFUSALS_LOGGED && routeRefusalsLogged.add(message.profile())) {
-                log.warn("node {}: {} (logged once per destination; later ones go to the sender only)", nodeId,
-                        reason);
-            }
-            undeliverable(message, reason);
-        }
+        return delivery.queuedBytesFrom(viaNodeId);
     }
 
     @Override
@@ -325,20 +250,6 @@ public final class KernelCore implements ComponentHost, JobRunner {
             throw new IllegalStateException("request " + id + " failed", e.getCause());
         } catch (TimeoutException e) {
             throw new RequestFailedException(Reason.TIMEOUT, id, "no outcome for request " + id + " (timer stalled)", e);
-        }
-    }
-
-    /** Hands a request's outcome to its requester. */
-    private void deliverOutcome(PendingRequest entry) {
-        LocalShell requester = entry.requester;
-        if (requester == null) {
-            entry.settle();
-            return;
-        }
-        Message carrier = entry.outcomeMessage();
-        Job job = new Job(carrier, requester.name(), entry, jobSequence.getAndIncrement(), clock.nanoTime());
-        if (!scheduler.submit(job)) {
-            discard(job);
         }
     }
 
@@ -405,7 +316,8 @@ public final class KernelCore implements ComponentHost, JobRunner {
                 restarts += shell.restartCount();
             }
         }
-        return new NodeStats(nodeId, jobSequence.get(), handled, failed, restarts, undeliverable.sum(), discarded.sum(),
+        return new NodeStats(nodeId, delivery.jobCount(), handled, failed, restarts, delivery.undeliverableCount(),
+                delivery.discardedCount(),
                 requests.timeoutCount(), requests.lateReplyCount(), escalations.sum(), resets.sum());
     }
 
@@ -423,16 +335,14 @@ public final class KernelCore implements ComponentHost, JobRunner {
         return true;
     }
 
+    /** See {@link Delivery#resubmit}. */
     boolean resubmit(Job job) {
-        return scheduler.submit(job);
+        return delivery.resubmit(job);
     }
 
-    /** Counts a job the node will not run because it is closing; settles request outcomes. */
+    /** See {@link Delivery#discard}. */
     void discard(Job job) {
-        discarded.increment();
-        if (job.target() instanceof PendingRequest entry) {
-            entry.settle();
-        }
+        delivery.discard(job);
     }
 
     // ---------------------------------------------------------------- undeliverable and failures
@@ -441,29 +351,12 @@ public final class KernelCore implements ComponentHost, JobRunner {
     void notRunning(LocalShell shell, Message message) {
         NodeState now = state;
         if (now == NodeState.CLOSING || now == NodeState.CLOSED) {
-            discarded.increment();
+            delivery.countDiscarded();
         } else if (shell.isRemoved()) {
             send(message); // re-resolve: the profile may live elsewhere now (migration)
         } else {
-            undeliverable(message, "component '" + shell.name() + "' is " + shell.state());
+            delivery.undeliverable(message, "component '" + shell.name() + "' is " + shell.state());
         }
-    }
-
-    /** Counts an undeliverable message and tells its sender, if there is one to tell. */
-    void undeliverable(Message message, String reason) {
-        undeliverable.increment();
-        Contents contents = message.contents();
-        if (message.sender() == null || contents instanceof Undeliverable || contents instanceof RequestFailed) {
-            // Nobody to tell, or a notice about a notice (which could loop): the log is the notice.
-            log.warn("node {}: message {} to '{}' is undeliverable: {}", nodeId, message.messageId(), message.profile(),
-                    reason);
-            return;
-        }
-        log.debug("node {}: message {} to '{}' is undeliverable: {}", nodeId, message.messageId(), message.profile(),
-                reason);
-        send(new Message(message.sender(), nodeProfile, clock.epochNanos(), message.qos(),
-                new Undeliverable(message.profile().toString(), message.messageId().toString(), reason),
-                newMessageId(), message.messageId()));
     }
 
     /** Logs a component's failure and, if the message was a request, fails it (owner thread). */
@@ -641,7 +534,7 @@ public final class KernelCore implements ComponentHost, JobRunner {
 
     /** Hands a message to a route; a refusal makes it undeliverable. */
     void forward(Message message, RemoteRoute route) {
-        deliverRemote(message, route);
+        delivery.deliverRemote(message, route);
     }
 
     public Shell shell(Profile profile) {
@@ -713,13 +606,13 @@ public final class KernelCore implements ComponentHost, JobRunner {
         try {
             if (wasStarted) {
                 for (Job job : scheduler.shutdown(config.drainTimeoutNs())) {
-                    discard(job);
+                    delivery.discard(job);
                 }
             }
             List<LocalShell> reverse = new ArrayList<>(shells).reversed();
             for (LocalShell shell : reverse) {
                 for (Job job : shell.closeGate()) {
-                    discard(job);
+                    delivery.discard(job);
                 }
                 shell.stopForClose();
             }

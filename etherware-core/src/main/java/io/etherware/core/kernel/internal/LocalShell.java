@@ -313,7 +313,7 @@ public final class LocalShell implements Shell {
 
     /** A counted job ran or was forwarded. */
     private void leftJob(Job job) {
-        if (job.sequence() >= KernelCore.PEN_OFFSET) {
+        if (job.sequence() >= Delivery.PEN_OFFSET) {
             pen.leftPenned();
         }
         kernel.countInbound(job.message(), -1);
@@ -427,7 +427,7 @@ public final class LocalShell implements Shell {
         gate.drainKept(() -> { }, kept -> {
             if (kept.target() == this) {
                 kernel.forward(kept.message(), to.route());
-                if (kept.sequence() >= KernelCore.PEN_OFFSET) {
+                if (kept.sequence() >= Delivery.PEN_OFFSET) {
                     pen.leftPenned();
                 }
                 QUEUED.getAndAdd(this, -1);
