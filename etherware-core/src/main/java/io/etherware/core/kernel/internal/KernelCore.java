@@ -18,7 +18,6 @@ import io.etherware.core.kernel.RequestFailed;
 import io.etherware.core.kernel.SupervisionPolicy;
 import io.etherware.core.kernel.SwapTimings;
 import io.etherware.core.kernel.Undeliverable;
-import io.etherware.core.message.Contents;
 import io.etherware.core.message.ContentsTypes;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageId;
@@ -33,12 +32,10 @@ import java.util.Comparator;
 import java.util.List;
 import java.util.Objects;
 import java.util.concurrent.CompletableFuture;
-import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.ExecutionException;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.TimeoutException;
 import java.util.concurrent.atomic.AtomicLong;
-import java.util.concurrent.atomic.LongAdder;
 import java.util.function.LongConsumer;
 import java.util.function.Supplier;
 import org.slf4j.Logger;
@@ -77,14 +74,10 @@ public final class KernelCore implements ComponentHost, JobRunner {
     /** What sees every message sent. */
     private final Taps taps;
     private final AtomicLong messageSequence = new AtomicLong();
-    /** Registered components in registration order. */
-    private final List<LocalShell> shells = new CopyOnWriteArrayList<>();
-    /** Every component added and not yet removed or moved away, for the counters. */
-    private final List<LocalShell> everAdded = new CopyOnWriteArrayList<>();
-    /** The counters of the components removed or moved away (handled, failed, restarts); guarded by itself. */
-    private final long[] retiredCounts = new long[3];
-    private final LongAdder escalations = new LongAdder();
-    private final LongAdder resets = new LongAdder();
+    /** The components this node hosts, and the counters of those it hosted. */
+    private final ShellTable shells = new ShellTable(registry);
+    /** Failure reports and escalation. */
+    private final Supervision supervision;
     private final Object lifecycleLock = new Object();
     private final CompletableFuture<Void> closed = new CompletableFuture<>();
     private volatile NodeState state = NodeState.CREATED;
@@ -100,6 +93,8 @@ public final class KernelCore implements ComponentHost, JobRunner {
         this.delivery = new Delivery(nodeId, nodeProfile, clock, scheduler, this::send, this::newMessageId);
         this.requests = new RequestTable(nodeId, delivery::deliverOutcome, this::mayAnswer);
         this.reconfiguration = new Reconfiguration(clock, registry, requests);
+        this.supervision = new Supervision(nodeId, clock, config.escalation(), requests, shells, this::send,
+                this::newMessageId, this::closeAsync);
         this.taps = new Taps(nodeId);
         registerContents(config.contentsTypes());
     }
@@ -255,23 +250,23 @@ public final class KernelCore implements ComponentHost, JobRunner {
 
     @Override
     public CompletableFuture<Void> holdAsync(Profile profile) {
-        return reconfiguration.holdAsync(localShell(profile));
+        return reconfiguration.holdAsync(shells.local(profile));
     }
 
     @Override
     public CompletableFuture<Void> holdAsync(Profile profile, Duration settleWait) {
-        return reconfiguration.holdAsync(localShell(profile), settleWait);
+        return reconfiguration.holdAsync(shells.local(profile), settleWait);
     }
 
     @Override
     public void release(Profile profile) {
-        localShell(profile).release();
+        shells.local(profile).release();
     }
 
     @Override
     public CompletableFuture<Void> swapAsync(Profile profile, Supplier<? extends Component> factory) {
         Objects.requireNonNull(factory, "factory");
-        return reconfiguration.swapAsync(localShell(profile), factory, null, Duration.ZERO).thenApply(timings -> null);
+        return reconfiguration.swapAsync(shells.local(profile), factory, null, Duration.ZERO).thenApply(timings -> null);
     }
 
     @Override
@@ -285,15 +280,7 @@ public final class KernelCore implements ComponentHost, JobRunner {
                                                     LongConsumer onFirstHandling, Duration settleWait) {
         Objects.requireNonNull(factory, "factory");
         Objects.requireNonNull(onFirstHandling, "onFirstHandling");
-        return reconfiguration.swapAsync(localShell(profile), factory, onFirstHandling, settleWait);
-    }
-
-    private LocalShell localShell(Profile profile) {
-        Endpoint endpoint = registry.resolve(Objects.requireNonNull(profile, "profile"));
-        if (endpoint instanceof Endpoint.Local local) {
-            return (LocalShell) local.shell();
-        }
-        throw new IllegalArgumentException("profile '" + profile + "' is hosted on another node; manage it there");
+        return reconfiguration.swapAsync(shells.local(profile), factory, onFirstHandling, settleWait);
     }
 
     @Override
@@ -303,22 +290,10 @@ public final class KernelCore implements ComponentHost, JobRunner {
 
     @Override
     public NodeStats stats() {
-        long handled;
-        long failed;
-        long restarts;
-        synchronized (retiredCounts) {
-            handled = retiredCounts[0];
-            failed = retiredCounts[1];
-            restarts = retiredCounts[2];
-            for (LocalShell shell : everAdded) {
-                handled += shell.handledCount();
-                failed += shell.failedCount();
-                restarts += shell.restartCount();
-            }
-        }
-        return new NodeStats(nodeId, delivery.jobCount(), handled, failed, restarts, delivery.undeliverableCount(),
-                delivery.discardedCount(),
-                requests.timeoutCount(), requests.lateReplyCount(), escalations.sum(), resets.sum());
+        ShellTable.Totals totals = shells.totals();
+        return new NodeStats(nodeId, delivery.jobCount(), totals.handled(), totals.failed(), totals.restarts(),
+                delivery.undeliverableCount(), delivery.discardedCount(),
+                requests.timeoutCount(), requests.lateReplyCount(), supervision.escalationCount(), supervision.resetCount());
     }
 
     // ---------------------------------------------------------------- JobRunner
@@ -359,41 +334,9 @@ public final class KernelCore implements ComponentHost, JobRunner {
         }
     }
 
-    /** Logs a component's failure and, if the message was a request, fails it (owner thread). */
-    void reportFailure(LocalShell shell, Message message, Throwable failure, long failures) {
-        log.warn("node {}: component '{}' failed handling message {} from '{}' (failure {})", nodeId, shell.name(),
-                message.messageId(), message.sender(), failures, failure);
-        Contents contents = message.contents();
-        if (message.sender() == null || contents instanceof Undeliverable || contents instanceof RequestFailed) {
-            return;
-        }
-        // A local request is known; a message from another node may be a request there, whose
-        // kernel drops the notice if it is not.
-        if (requests.isPending(message.messageId()) || !nodeId.equals(message.messageId().nodeId())) {
-            send(new Message(message.sender(), shell.profile(), clock.epochNanos(), message.qos(),
-                    new RequestFailed(message.messageId().toString(), shell.name(), failure.toString()),
-                    newMessageId(), message.messageId()));
-        }
-    }
-
-    /** A component exceeded its restart intensity: apply the node's policy (owner thread). */
-    void escalate(LocalShell shell, Throwable failure) {
-        escalations.increment();
-        switch (config.escalation()) {
-            case RESET_ALL -> {
-                resets.increment();
-                log.error("node {}: escalation from '{}' ({}): resetting all {} components", nodeId, shell.name(),
-                        failure.toString(), shells.size());
-                for (LocalShell each : shells) {
-                    each.atBoundary(each::reset);
-                }
-            }
-            case STOP_NODE -> {
-                log.error("node {}: escalation from '{}' ({}): stopping the node", nodeId, shell.name(),
-                        failure.toString());
-                closeAsync();
-            }
-        }
+    /** Failure reports and escalation, for the shells. */
+    Supervision supervision() {
+        return supervision;
     }
 
     // ---------------------------------------------------------------- lifecycle
@@ -412,19 +355,7 @@ public final class KernelCore implements ComponentHost, JobRunner {
                         + " only at a running node");
             }
             shell = new LocalShell(this, profile, factory, config.supervision());
-            // Held before it is reachable: nothing reaches it unheld. Once every message the source
-            // forwarded to the arrival profile is in, the profile has served its turn.
-            LocalShell arrived = shell;
-            shell.arriveHeld(arrival, onFirstHandling, () -> registry.unregister(arrival, arrived.endpoint()));
-            registry.register(arrival, shell.endpoint());
-            try {
-                registry.register(profile, shell.endpoint()); // displaces the route to the source
-            } catch (IllegalArgumentException e) {
-                registry.unregister(arrival, shell.endpoint());
-                throw e;
-            }
-            shells.add(shell);
-            everAdded.add(shell);
+            shells.addArrived(shell, arrival, onFirstHandling);
         }
         shell.start();
         return shell;
@@ -432,15 +363,7 @@ public final class KernelCore implements ComponentHost, JobRunner {
 
     @Override
     public void admit(Profile arrival, long forwardedCount) {
-        Endpoint endpoint = registry.lookup(Objects.requireNonNull(arrival, "arrival"));
-        if (!(endpoint instanceof Endpoint.Local local) || local.shell().profile().equals(arrival)) {
-            throw new IllegalArgumentException("no migrated component arrived as '" + arrival + "'");
-        }
-        ArrivalPen pen = ((LocalShell) local.shell()).pen();
-        if (pen == null) {
-            throw new IllegalArgumentException("'" + local.shell().profile() + "' did not arrive by migration");
-        }
-        pen.admitAfter(forwardedCount);
+        shells.arrivedAs(arrival).admitAfter(forwardedCount);
     }
 
     @Override
@@ -456,9 +379,7 @@ public final class KernelCore implements ComponentHost, JobRunner {
                 throw new IllegalStateException("node '" + nodeId + "' is closed; cannot add '" + profile + "'");
             }
             shell = new LocalShell(this, profile, factory, policy);
-            registry.register(profile, shell.endpoint());
             shells.add(shell);
-            everAdded.add(shell);
             startNow = state == NodeState.RUNNING;
         }
         if (startNow) {
@@ -476,60 +397,35 @@ public final class KernelCore implements ComponentHost, JobRunner {
         Objects.requireNonNull(profile, "profile");
         LocalShell shell;
         synchronized (lifecycleLock) {
-            Endpoint endpoint = registry.lookup(profile);
-            if (!(endpoint instanceof Endpoint.Local local) || !registry.profiles().contains(profile)) {
-                throw new IllegalArgumentException("no local component has profile '" + profile + "'");
-            }
-            shell = (LocalShell) local.shell();
-            // By its profile, or by the arrival profile of a migrated component: all go.
-            registry.unregister(profile, endpoint);
-            registry.unregister(shell.profile(), endpoint);
-            ArrivalPen pen = shell.pen();
-            if (pen != null) {
-                registry.unregister(pen.arrival(), endpoint);
-            }
-            shells.remove(shell);
+            shell = shells.remove(profile);
         }
         if (shell.cancelIfUnstarted()) {
-            retire(shell);
+            shells.retire(shell);
             return CompletableFuture.completedFuture(null);
         }
         var stopped = new CompletableFuture<Void>();
         shell.atBoundary(() -> {
             shell.remove();
-            retire(shell);
+            shells.retire(shell);
             stopped.complete(null);
         });
         return stopped;
     }
 
-    /**
-     * A component was removed or moved away: keeps its counters in the node's totals and lets it
-     * go, so that a node through which components keep moving does not keep every shell.
-     */
-    private void retire(LocalShell shell) {
-        synchronized (retiredCounts) {
-            if (everAdded.remove(shell)) {
-                retiredCounts[0] += shell.handledCount();
-                retiredCounts[1] += shell.failedCount();
-                retiredCounts[2] += shell.restartCount();
-            }
-        }
-    }
-
     @Override
     public CompletableFuture<Void> relocateAsync(Profile profile, RemoteRoute route) {
         Objects.requireNonNull(route, "route");
-        LocalShell shell = localShell(profile);
+        LocalShell shell = shells.local(profile);
         if (!shell.profile().equals(profile)) {
             throw new IllegalArgumentException("relocate needs the exact profile '" + shell.profile() + "', not a query");
         }
-        return reconfiguration.relocateAsync(shell, route, () -> shells.remove(shell)).thenRun(() -> retire(shell));
+        return reconfiguration.relocateAsync(shell, route, () -> shells.detach(shell))
+                .thenRun(() -> shells.retire(shell));
     }
 
     @Override
     public CompletableFuture<ComponentState> snapshotAsync(Profile profile) {
-        return reconfiguration.snapshotAsync(localShell(profile));
+        return reconfiguration.snapshotAsync(shells.local(profile));
     }
 
     /** Hands a message to a route; a refusal makes it undeliverable. */
@@ -538,11 +434,11 @@ public final class KernelCore implements ComponentHost, JobRunner {
     }
 
     public Shell shell(Profile profile) {
-        return localShell(profile);
+        return shells.local(profile);
     }
 
     public List<Shell> shells() {
-        return List.copyOf(shells);
+        return List.copyOf(shells.registered());
     }
 
     /** Starts the scheduler, then the components in registration order. */
@@ -554,10 +450,10 @@ public final class KernelCore implements ComponentHost, JobRunner {
             scheduler.start(this, clock);
             state = NodeState.RUNNING;
         }
-        for (LocalShell shell : shells) {
+        for (LocalShell shell : shells.registered()) {
             shell.start();
         }
-        log.info("node {} started: scheduler {}, {} components", nodeId, scheduler.name(), shells.size());
+        log.info("node {} started: scheduler {}, {} components", nodeId, scheduler.name(), shells.registered().size());
     }
 
     public boolean isRunning() {
@@ -609,7 +505,7 @@ public final class KernelCore implements ComponentHost, JobRunner {
                     delivery.discard(job);
                 }
             }
-            List<LocalShell> reverse = new ArrayList<>(shells).reversed();
+            List<LocalShell> reverse = new ArrayList<>(shells.registered()).reversed();
             for (LocalShell shell : reverse) {
                 for (Job job : shell.closeGate()) {
                     delivery.discard(job);

@@ -61,6 +61,7 @@ public final class LocalShell implements Shell {
     }
 
     private final KernelCore kernel;
+    private final Supervision supervision;
     private final Profile profile;
     private final String name;
     private final SupervisionPolicy policy;
@@ -119,6 +120,7 @@ public final class LocalShell implements Shell {
 
     LocalShell(KernelCore kernel, Profile profile, Supplier<? extends Component> factory, SupervisionPolicy policy) {
         this.kernel = kernel;
+        this.supervision = kernel.supervision();
         this.profile = Objects.requireNonNull(profile, "profile");
         this.name = profile.toString();
         this.factory = Objects.requireNonNull(factory, "factory");
@@ -523,7 +525,7 @@ public final class LocalShell implements Shell {
 
     private void onFailure(Message message, Throwable failure, long nowNs) {
         long failures = failed + 1;
-        kernel.reportFailure(this, message, failure, failures);
+        supervision.reportFailure(profile, message, failure, failures);
         try {
             applyPolicy(failure, nowNs);
         } finally {
@@ -544,7 +546,7 @@ public final class LocalShell implements Shell {
         } else {
             log.error("node {}: component '{}' failed more than {} times within {} ms; escalating to the node",
                     kernel.nodeId(), name, policy.maxRestarts(), policy.windowNs() / 1_000_000);
-            kernel.escalate(this, failure);
+            supervision.escalate(profile, failure);
         }
     }
 
@@ -581,7 +583,7 @@ public final class LocalShell implements Shell {
         } catch (Throwable failure) {
             lifecycle = State.FAILED;
             log.error("node {}: component '{}' could not be restarted; escalating to the node", kernel.nodeId(), name, failure);
-            kernel.escalate(this, failure);
+            supervision.escalate(profile, failure);
         }
     }
 
