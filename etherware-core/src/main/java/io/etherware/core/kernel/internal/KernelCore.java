@@ -2,8 +2,6 @@ package io.etherware.core.kernel.internal;
 
 import io.etherware.core.component.Component;
 import io.etherware.core.component.ComponentState;
-import io.etherware.core.component.RequestFailedException;
-import io.etherware.core.component.RequestFailedException.Reason;
 import io.etherware.core.component.Shell;
 import io.etherware.core.kernel.ComponentHost;
 import io.etherware.core.kernel.Endpoint;
@@ -27,14 +25,10 @@ import io.etherware.core.scheduler.JobRunner;
 import io.etherware.core.scheduler.Scheduler;
 import io.etherware.core.time.NodeClock;
 import java.time.Duration;
-import java.util.ArrayList;
 import java.util.Comparator;
 import java.util.List;
 import java.util.Objects;
 import java.util.concurrent.CompletableFuture;
-import java.util.concurrent.ExecutionException;
-import java.util.concurrent.TimeUnit;
-import java.util.concurrent.TimeoutException;
 import java.util.concurrent.atomic.AtomicLong;
 import java.util.function.LongConsumer;
 import java.util.function.Supplier;
@@ -55,8 +49,6 @@ import org.slf4j.LoggerFactory;
 public final class KernelCore implements ComponentHost, JobRunner {
 
     private static final Logger log = LoggerFactory.getLogger(Kernel.class);
-    /** Extra wait of a blocking request beyond its timeout, for the timer thread to fire. */
-    private static final long BLOCKING_GRACE_NS = TimeUnit.SECONDS.toNanos(5);
 
     private enum NodeState { CREATED, RUNNING, CLOSING, CLOSED }
 
@@ -91,7 +83,7 @@ public final class KernelCore implements ComponentHost, JobRunner {
         // Ties in arrival order, whatever the scheduler's comparator does with them.
         this.urgency = scheduler.urgency().thenComparingLong(Job::sequence);
         this.delivery = new Delivery(nodeId, nodeProfile, clock, scheduler, this::send, this::newMessageId);
-        this.requests = new RequestTable(nodeId, delivery::deliverOutcome, this::mayAnswer);
+        this.requests = new RequestTable(nodeId, delivery::deliverOutcome, this::mayAnswer, this::send);
         this.reconfiguration = new Reconfiguration(clock, registry, requests);
         this.supervision = new Supervision(nodeId, clock, config.escalation(), requests, shells, this::send,
                 this::newMessageId, this::closeAsync);
@@ -211,41 +203,14 @@ public final class KernelCore implements ComponentHost, JobRunner {
      * the thread that has it).
      */
     CompletableFuture<Message> request(Message request, LocalShell requester, long timeoutNs) {
-        if (timeoutNs <= 0) {
-            throw new IllegalArgumentException("timeoutNs=" + timeoutNs + " must be > 0");
-        }
-        if (request.sender() == null) {
-            throw new IllegalArgumentException("request " + request.messageId() + " needs a sender for its reply");
-        }
-        PendingRequest entry = requests.register(request, requester, timeoutNs);
-        try {
-            send(request);
-        } catch (RuntimeException e) {
-            requests.cancel(entry);
-            throw e;
-        }
-        return entry.future;
+        return requests.send(request, requester, timeoutNs);
     }
 
     /** A request that waits for its reply; refuses dispatcher threads. */
     public Message requestBlocking(Message request, long timeoutNs) {
         DispatcherMark.requireNotDispatcher("requestBlocking",
                 "Use request(...) and continue in the future's callback (thenAccept).");
-        CompletableFuture<Message> reply = request(request, timeoutNs);
-        MessageId id = request.messageId();
-        try {
-            return reply.get(timeoutNs + BLOCKING_GRACE_NS, TimeUnit.NANOSECONDS);
-        } catch (InterruptedException e) {
-            Thread.currentThread().interrupt();
-            throw new RequestFailedException(Reason.INTERRUPTED, id, "interrupted while waiting for the reply to " + id, e);
-        } catch (ExecutionException e) {
-            if (e.getCause() instanceof RequestFailedException failure) {
-                throw new RequestFailedException(failure.reason(), id, failure.getMessage(), failure);
-            }
-            throw new IllegalStateException("request " + id + " failed", e.getCause());
-        } catch (TimeoutException e) {
-            throw new RequestFailedException(Reason.TIMEOUT, id, "no outcome for request " + id + " (timer stalled)", e);
-        }
+        return RequestTable.await(request(request, timeoutNs), request.messageId(), timeoutNs);
     }
 
     @Override
@@ -399,17 +364,7 @@ public final class KernelCore implements ComponentHost, JobRunner {
         synchronized (lifecycleLock) {
             shell = shells.remove(profile);
         }
-        if (shell.cancelIfUnstarted()) {
-            shells.retire(shell);
-            return CompletableFuture.completedFuture(null);
-        }
-        var stopped = new CompletableFuture<Void>();
-        shell.atBoundary(() -> {
-            shell.remove();
-            shells.retire(shell);
-            stopped.complete(null);
-        });
-        return stopped;
+        return shells.stop(shell);
     }
 
     @Override
@@ -505,13 +460,7 @@ public final class KernelCore implements ComponentHost, JobRunner {
                     delivery.discard(job);
                 }
             }
-            List<LocalShell> reverse = new ArrayList<>(shells.registered()).reversed();
-            for (LocalShell shell : reverse) {
-                for (Job job : shell.closeGate()) {
-                    delivery.discard(job);
-                }
-                shell.stopForClose();
-            }
+            shells.closeAll(delivery::discard);
             requests.close();
         } finally {
             state = NodeState.CLOSED;

@@ -9,10 +9,13 @@ import io.etherware.core.message.MessageId;
 import io.etherware.core.message.Origin;
 import java.util.LinkedHashSet;
 import java.util.Map;
+import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.ExecutionException;
 import java.util.concurrent.RejectedExecutionException;
 import java.util.concurrent.ScheduledThreadPoolExecutor;
 import java.util.concurrent.TimeUnit;
+import java.util.concurrent.TimeoutException;
 import java.util.concurrent.atomic.LongAdder;
 import java.util.function.BiPredicate;
 import java.util.function.Consumer;
@@ -20,8 +23,8 @@ import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
 /**
- * The requests of a node that wait for their replies: correlation by request id, timeouts on one
- * shared timer thread, late replies counted and dropped.
+ * The requests of a node that wait for their replies: sending them, correlation by request id,
+ * timeouts on one shared timer thread, late replies counted and dropped.
  *
  * <p>Exactly one of reply, timeout and close settles a request: whichever removes it from the
  * table first. A reply that finds its request gone because it timed out is a late reply; the
@@ -35,6 +38,8 @@ final class RequestTable {
     private static final Logger log = LoggerFactory.getLogger(RequestTable.class);
     /** How many timed-out request ids are remembered to recognize late replies. */
     private static final int TIMED_OUT_MEMORY = 4096;
+    /** Extra wait of a blocking request beyond its timeout, for the timer thread to fire. */
+    private static final long BLOCKING_GRACE_NS = TimeUnit.SECONDS.toNanos(5);
 
     private final String nodeId;
     private final Consumer<PendingRequest> outcomeSink;
@@ -46,15 +51,20 @@ final class RequestTable {
     private final LongAdder foreignReplies = new LongAdder();
     /** Whether a node (by id) may answer a request (its message): where the request was routed. */
     private final BiPredicate<Message, String> mayAnswer;
+    /** The kernel's send, for the requests. */
+    private final Consumer<Message> sendMessage;
 
     /**
      * @param outcomeSink hands a settled-to-be request to its requester (a job for a component,
      *                    or {@link PendingRequest#settle()} directly)
+     * @param sendMessage the kernel's send
      */
-    RequestTable(String nodeId, Consumer<PendingRequest> outcomeSink, BiPredicate<Message, String> mayAnswer) {
+    RequestTable(String nodeId, Consumer<PendingRequest> outcomeSink, BiPredicate<Message, String> mayAnswer,
+                 Consumer<Message> sendMessage) {
         this.nodeId = nodeId;
         this.outcomeSink = outcomeSink;
         this.mayAnswer = mayAnswer;
+        this.sendMessage = sendMessage;
         this.timer = new ScheduledThreadPoolExecutor(1, runnable -> {
             Thread thread = new Thread(runnable, "etherware-timer-" + nodeId);
             thread.setDaemon(true);
@@ -66,6 +76,49 @@ final class RequestTable {
         // a real-time dispatcher, it would inherit that dispatcher's CPUs and wait behind it there,
         // runnable, holding up every safepoint of the JVM (seen with the CPUs partitioned).
         timer.prestartCoreThread();
+    }
+
+    /**
+     * Sends a request; the outcome is delivered as a job of {@code requester} (null: completed on
+     * the thread that has it).
+     */
+    CompletableFuture<Message> send(Message request, LocalShell requester, long timeoutNs) {
+        if (timeoutNs <= 0) {
+            throw new IllegalArgumentException("timeoutNs=" + timeoutNs + " must be > 0");
+        }
+        if (request.sender() == null) {
+            throw new IllegalArgumentException("request " + request.messageId() + " needs a sender for its reply");
+        }
+        PendingRequest entry = register(request, requester, timeoutNs);
+        try {
+            sendMessage.accept(request);
+        } catch (RuntimeException e) {
+            cancel(entry);
+            throw e;
+        }
+        return entry.future;
+    }
+
+    /**
+     * Waits for {@code reply}, the outcome of request {@code id} sent with {@code timeoutNs}, on the
+     * calling thread (which must not be a dispatcher).
+     *
+     * @throws RequestFailedException if the outcome is a failure, or none comes
+     */
+    static Message await(CompletableFuture<Message> reply, MessageId id, long timeoutNs) {
+        try {
+            return reply.get(timeoutNs + BLOCKING_GRACE_NS, TimeUnit.NANOSECONDS);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            throw new RequestFailedException(Reason.INTERRUPTED, id, "interrupted while waiting for the reply to " + id, e);
+        } catch (ExecutionException e) {
+            if (e.getCause() instanceof RequestFailedException failure) {
+                throw new RequestFailedException(failure.reason(), id, failure.getMessage(), failure);
+            }
+            throw new IllegalStateException("request " + id + " failed", e.getCause());
+        } catch (TimeoutException e) {
+            throw new RequestFailedException(Reason.TIMEOUT, id, "no outcome for request " + id + " (timer stalled)", e);
+        }
     }
 
     /**

@@ -2,25 +2,32 @@ package io.etherware.core.kernel.internal;
 
 import io.etherware.core.kernel.Endpoint;
 import io.etherware.core.message.Profile;
+import io.etherware.core.scheduler.Job;
+import java.util.ArrayList;
 import java.util.Collections;
 import java.util.List;
 import java.util.Objects;
+import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.CopyOnWriteArrayList;
+import java.util.function.Consumer;
 import java.util.function.LongConsumer;
 
 /**
  * The components a node hosts: their shells in registration order (the order they start in; they
- * stop in reverse at close), their profiles in the node's {@link ProfileTable}, and the counters
- * of every component the node has hosted, kept when one is removed or moves away.
+ * stop in reverse at close), their profiles in the node's {@link ProfileTable}, the stopping of a
+ * removed one, and the counters of every component the node has hosted, kept when one is removed
+ * or moves away.
  *
  * <p>Owned by {@link KernelCore}, which makes the shells and decides when the node may take or
  * lose one.
  *
  * <p>Thread-safety: every method may be called from any thread. {@link KernelCore} calls
  * {@link #add}, {@link #addArrived} and {@link #remove} under its lifecycle lock, which orders
- * them with the node's start and close; the lists are copy-on-write, so readers take no lock. The
- * retired counters are guarded by their array, a lock taken by {@link #retire} and
- * {@link #totals} alone, which take no other lock while they hold it.
+ * them with the node's start and close; the lists are copy-on-write, so readers take no lock.
+ * {@link #stop} runs the removal on the thread that owns the component at its boundary (see
+ * {@link ComponentGate#atBoundary}); {@link #closeAll} runs only at close. The retired counters
+ * are guarded by their array, a lock taken by {@link #retire} and {@link #totals} alone, which
+ * take no other lock while they hold it.
  */
 final class ShellTable {
 
@@ -97,6 +104,38 @@ final class ShellTable {
         }
         shells.remove(shell);
         return shell;
+    }
+
+    /**
+     * Stops a component that {@link #remove} took off at its next message boundary (at once if it
+     * never started) and retires it; completes when it has stopped.
+     */
+    CompletableFuture<Void> stop(LocalShell shell) {
+        if (shell.cancelIfUnstarted()) {
+            retire(shell);
+            return CompletableFuture.completedFuture(null);
+        }
+        var stopped = new CompletableFuture<Void>();
+        shell.atBoundary(() -> {
+            shell.remove();
+            retire(shell);
+            stopped.complete(null);
+        });
+        return stopped;
+    }
+
+    /**
+     * At close, with the dispatchers stopped: closes the gates and stops the components in reverse
+     * registration order; the jobs still waiting at a gate go to {@code discard}.
+     */
+    void closeAll(Consumer<Job> discard) {
+        List<LocalShell> reverse = new ArrayList<>(shells).reversed();
+        for (LocalShell shell : reverse) {
+            for (Job job : shell.closeGate()) {
+                discard.accept(job);
+            }
+            shell.stopForClose();
+        }
     }
 
     /** Takes a relocating component off the list; its profile stays until the relocation switches it. */
