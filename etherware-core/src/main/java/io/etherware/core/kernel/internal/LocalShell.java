@@ -19,71 +19,46 @@ import java.util.concurrent.atomic.AtomicBoolean;
 import java.util.concurrent.atomic.AtomicInteger;
 import java.util.function.LongConsumer;
 import java.util.function.Supplier;
-import org.slf4j.Logger;
-import org.slf4j.LoggerFactory;
 
 /**
  * The {@link Shell} of a component on this node: its {@link ComponentGate} (one job at a time,
- * across all dispatchers), lifecycle, counters, logic reference, and the supervision steps that
- * run on the owning thread: restart, reset, swap, stop.
+ * across all dispatchers), its queue count and relocation, the ordering of a migrated arrival, and
+ * when the steps on its logic run (start, handling, reset, swap, stop), each on the thread that
+ * owns the gate. The logic itself, its lifecycle state, counters and restart policy are
+ * {@link ComponentLogic}'s.
  *
  * <p>A message waits for its component at most for the handling in progress plus the more urgent
  * messages already waiting for it (see {@link ComponentGate}).
  *
  * <p>Thread-safety: fields marked "owner" are touched only by the thread that owns the gate,
- * whose entry and exit are full fences, so they need no further synchronization. Counters are
- * written by the owner with release stores and read with acquire loads (plain moves on x86), so
- * a reader who sees a failure counted also sees the restart that followed it.
+ * whose entry and exit are full fences, so they need no further synchronization. The queue
+ * count is changed by CAS from any thread; no method takes a lock of its own (the gate's lock is
+ * the gate's).
  */
 public final class LocalShell implements Shell {
 
-    private static final Logger log = LoggerFactory.getLogger("io.etherware.core.kernel.Supervision");
-
-    private static final VarHandle HANDLED;
-    private static final VarHandle FAILED;
-    private static final VarHandle RESTARTS;
-    private static final VarHandle LAST_HANDLING_NS;
     private static final VarHandle QUEUED;
     /** In {@link #queued}: the profile now routes past this shell; send straight to {@link #forwardTo}. */
     private static final int DIRECT = 1 << 30;
 
     static {
         try {
-            var lookup = MethodHandles.lookup();
-            HANDLED = lookup.findVarHandle(LocalShell.class, "handled", long.class);
-            FAILED = lookup.findVarHandle(LocalShell.class, "failed", long.class);
-            RESTARTS = lookup.findVarHandle(LocalShell.class, "restarts", long.class);
-            LAST_HANDLING_NS = lookup.findVarHandle(LocalShell.class, "lastHandlingNs", long.class);
-            QUEUED = lookup.findVarHandle(LocalShell.class, "queued", int.class);
+            QUEUED = MethodHandles.lookup().findVarHandle(LocalShell.class, "queued", int.class);
         } catch (ReflectiveOperationException e) {
             throw new ExceptionInInitializerError(e);
         }
     }
 
     private final KernelCore kernel;
-    private final Supervision supervision;
     private final Profile profile;
     private final String name;
-    private final SupervisionPolicy policy;
-    private final boolean snapshotting;
     private final Endpoint.Local endpoint;
-    private final ShellContext context;
     private final ComponentGate gate;
+    /** The component's logic, lifecycle state, counters and restart policy. */
+    private final ComponentLogic logic;
     private final AtomicBoolean started = new AtomicBoolean();
 
-    private volatile Supplier<? extends Component> factory;
-    private volatile Component logic;
-    private volatile State lifecycle = State.CREATED;
     private volatile boolean removed;
-
-    @SuppressWarnings("unused") // through HANDLED
-    private long handled;
-    @SuppressWarnings("unused") // through FAILED
-    private long failed;
-    @SuppressWarnings("unused") // through RESTARTS
-    private long restarts;
-    @SuppressWarnings("unused") // through LAST_HANDLING_NS
-    private long lastHandlingNs;
     /**
      * Jobs of this component submitted and not yet run (queued at a dispatcher, or kept at the
      * gate), plus {@link #DIRECT} once a relocation has switched the profile to its route.
@@ -109,28 +84,16 @@ public final class LocalShell implements Shell {
     /** The holds and swaps waiting for quiescence ({@link #whenSettled}), in request order; owner. */
     private final ArrayDeque<Pending> pendingActions = new ArrayDeque<>();
 
-    private ComponentState lastSnapshot; // owner
-    /** When the current logic's last handling ended; for a timed swap's gap. */
-    private long lastHandlingEndNs = SwapTimings.UNKNOWN_NS; // owner
-    /** Told when the logic installed by a timed swap begins its first message, then cleared. */
-    private LongConsumer firstHandlingProbe; // owner
-    private final long[] restartTimesNs; // owner: ring of the latest restarts
-    private int restartHead; // owner
-    private int restartsInRing; // owner
-
     LocalShell(KernelCore kernel, Profile profile, Supplier<? extends Component> factory, SupervisionPolicy policy) {
         this.kernel = kernel;
-        this.supervision = kernel.supervision();
         this.profile = Objects.requireNonNull(profile, "profile");
         this.name = profile.toString();
-        this.factory = Objects.requireNonNull(factory, "factory");
-        this.policy = Objects.requireNonNull(policy, "policy");
-        this.snapshotting = policy.restart() == SupervisionPolicy.Restart.FROM_SNAPSHOT;
-        this.restartTimesNs = new long[policy.restart() == SupervisionPolicy.Restart.STOP ? 0 : policy.maxRestarts()];
+        Objects.requireNonNull(factory, "factory");
+        Objects.requireNonNull(policy, "policy");
         this.endpoint = new Endpoint.Local(this);
         this.gate = new ComponentGate(kernel, name);
-        this.context = new ShellContext(kernel, this);
-        this.logic = newLogic(factory);
+        this.logic = new ComponentLogic(kernel.nodeId(), kernel.clock(), profile, factory, policy,
+                new ShellContext(kernel, this), kernel.supervision());
     }
 
     // ---------------------------------------------------------------- Shell
@@ -142,37 +105,37 @@ public final class LocalShell implements Shell {
 
     @Override
     public State state() {
-        return lifecycle;
+        return logic.state();
     }
 
     @Override
     public long handledCount() {
-        return (long) HANDLED.getAcquire(this);
+        return logic.handledCount();
     }
 
     @Override
     public long failedCount() {
-        return (long) FAILED.getAcquire(this);
+        return logic.failedCount();
     }
 
     @Override
     public long restartCount() {
-        return (long) RESTARTS.getAcquire(this);
+        return logic.restartCount();
     }
 
     @Override
     public long lastHandlingNs() {
-        return (long) LAST_HANDLING_NS.getAcquire(this);
+        return logic.lastHandlingNs();
     }
 
     @Override
     public Class<? extends Component> logicType() {
-        return logic.getClass();
+        return logic.logicType();
     }
 
     @Override
     public String toString() {
-        return "Shell[" + name + ", " + lifecycle + "]";
+        return "Shell[" + name + ", " + logic.state() + "]";
     }
 
     String name() {
@@ -336,7 +299,7 @@ public final class LocalShell implements Shell {
     void arriveHeld(Profile arrivalProfile, LongConsumer probe, Runnable onAllArrived) {
         pen = new ArrivalPen(arrivalProfile, gate::release, onAllArrived);
         gate.hold();
-        firstHandlingProbe = probe;
+        logic.expectFirstHandling(probe);
     }
 
     /** The ordering of a migrated component, or null. */
@@ -367,17 +330,7 @@ public final class LocalShell implements Shell {
         if (!started.compareAndSet(false, true)) {
             return;
         }
-        lifecycle = State.STARTING;
-        try {
-            Component current = logic;
-            current.onStart(context);
-            lastSnapshot = snapshotting ? current.snapshot() : null;
-            lifecycle = State.RUNNING;
-        } catch (Throwable failure) {
-            lifecycle = State.FAILED;
-            log.error("node {}: component '{}' failed to start; it is FAILED and messages to it are undeliverable",
-                    kernel.nodeId(), name, failure);
-        }
+        logic.start();
         gate.leave();
     }
 
@@ -387,7 +340,7 @@ public final class LocalShell implements Shell {
             return false;
         }
         removed = true;
-        lifecycle = State.STOPPED;
+        logic.markStopped();
         gate.leave();
         return true;
     }
@@ -399,16 +352,8 @@ public final class LocalShell implements Shell {
      */
     void remove() {
         removed = true;
-        stopRunningLogic();
+        logic.stopRunning();
         gate.endHoldOnLeave();
-    }
-
-    private void stopRunningLogic() {
-        if (lifecycle == State.RUNNING) {
-            lifecycle = State.STOPPING;
-            stopLogic(logic);
-        }
-        lifecycle = State.STOPPED;
     }
 
     /**
@@ -421,7 +366,7 @@ public final class LocalShell implements Shell {
      */
     void relocate(ProfileTable registry, Endpoint.Remote to, CompletableFuture<Void> done) {
         removed = true;
-        stopRunningLogic();
+        logic.stopRunning();
         relocationRegistry = registry;
         switched = done;
         forwardTo = to;
@@ -466,18 +411,11 @@ public final class LocalShell implements Shell {
 
     /** At close, with the dispatchers stopped: stops the component if it runs. */
     void stopForClose() {
-        State was = lifecycle;
-        if (was == State.RUNNING) {
-            lifecycle = State.STOPPING;
-            stopLogic(logic);
-            lifecycle = State.STOPPED;
-        } else if (was != State.FAILED) {
-            lifecycle = State.STOPPED;
-        }
+        logic.stopForClose();
     }
 
     private void handle(Message message, long nowNs) {
-        if (lifecycle != State.RUNNING) {
+        if (logic.state() != State.RUNNING) {
             Endpoint.Remote to = forwardTo;
             if (to != null) {
                 kernel.forward(message, to.route()); // relocated: in the order taken
@@ -486,135 +424,20 @@ public final class LocalShell implements Shell {
             }
             return;
         }
-        Component current = logic;
-        LongConsumer probe = firstHandlingProbe;
-        long probeStartNs = 0;
-        if (probe != null) {
-            // Read here, inside the gate, not the dispatcher's take time: that may precede the
-            // end of the swap for a job taken while the swap was finishing.
-            firstHandlingProbe = null;
-            probeStartNs = kernel.clock().nanoTime();
-        }
-        try {
-            current.onMessage(message, context);
-            if (snapshotting) {
-                lastSnapshot = current.snapshot();
-            }
-            HANDLED.setRelease(this, handled + 1);
-        } catch (Throwable failure) {
-            onFailure(message, failure, nowNs);
-        }
-        long endNs = kernel.clock().nanoTime();
-        lastHandlingEndNs = endNs;
-        LAST_HANDLING_NS.setRelease(this, endNs - nowNs);
-        if (probe != null) {
-            tellFirstHandling(probe, probeStartNs);
-        }
-    }
-
-    private void tellFirstHandling(LongConsumer probe, long startNs) {
-        try {
-            probe.accept(startNs);
-        } catch (Throwable failure) {
-            log.warn("node {}: the first-handling callback of the swap of '{}' threw; ignored", kernel.nodeId(), name,
-                    failure);
-        }
+        logic.handle(message, nowNs);
     }
 
     // ---------------------------------------------------------------- supervision (owner thread)
-
-    private void onFailure(Message message, Throwable failure, long nowNs) {
-        long failures = failed + 1;
-        supervision.reportFailure(profile, message, failure, failures);
-        try {
-            applyPolicy(failure, nowNs);
-        } finally {
-            // Counted once the policy is applied, so a reader who sees the failure sees its restart.
-            FAILED.setRelease(this, failures);
-        }
-    }
-
-    private void applyPolicy(Throwable failure, long nowNs) {
-        if (policy.restart() == SupervisionPolicy.Restart.STOP) {
-            lifecycle = State.STOPPING;
-            stopLogic(logic);
-            lifecycle = State.FAILED;
-            log.error("node {}: component '{}' stopped after its failure (policy STOP); messages to it are undeliverable",
-                    kernel.nodeId(), name);
-        } else if (withinIntensity(nowNs)) {
-            restart(nowNs);
-        } else {
-            log.error("node {}: component '{}' failed more than {} times within {} ms; escalating to the node",
-                    kernel.nodeId(), name, policy.maxRestarts(), policy.windowNs() / 1_000_000);
-            supervision.escalate(profile, failure);
-        }
-    }
-
-    /** Whether one more restart stays within {@code maxRestarts} per {@code windowNs}. */
-    private boolean withinIntensity(long nowNs) {
-        int max = restartTimesNs.length;
-        if (max == 0) {
-            return false;
-        }
-        // When the ring is full, restartHead points at the oldest of the last max restarts.
-        return restartsInRing < max || nowNs - restartTimesNs[restartHead] >= policy.windowNs();
-    }
-
-    private void restart(long nowNs) {
-        restartTimesNs[restartHead] = nowNs;
-        restartHead = (restartHead + 1) % restartTimesNs.length;
-        restartsInRing = Math.min(restartsInRing + 1, restartTimesNs.length);
-        long count = restarts + 1;
-        RESTARTS.setRelease(this, count);
-
-        boolean fromSnapshot = snapshotting && lastSnapshot != null;
-        lifecycle = State.STARTING;
-        stopLogic(logic);
-        try {
-            Component fresh = newLogic(factory);
-            if (fromSnapshot) {
-                fresh.restore(lastSnapshot);
-            }
-            fresh.onStart(context);
-            logic = fresh;
-            lifecycle = State.RUNNING;
-            log.warn("node {}: component '{}' restarted {} (restart {}, {} within the last {} ms)", kernel.nodeId(), name,
-                    fromSnapshot ? "from its last snapshot" : "fresh", count, restartsInRing, policy.windowNs() / 1_000_000);
-        } catch (Throwable failure) {
-            lifecycle = State.FAILED;
-            log.error("node {}: component '{}' could not be restarted; escalating to the node", kernel.nodeId(), name, failure);
-            supervision.escalate(profile, failure);
-        }
-    }
 
     /**
      * Boundary action of the node-wide reset (the Management Tree's reset): a fresh instance,
      * started, with its restart history forgotten. Removed components stay stopped.
      */
     void reset() {
-        if (removed || lifecycle == State.STOPPED || !started.get()) {
+        if (removed || logic.state() == State.STOPPED || !started.get()) {
             return;
         }
-        if (lifecycle == State.RUNNING) {
-            lifecycle = State.STOPPING;
-            stopLogic(logic);
-        }
-        restartHead = 0;
-        restartsInRing = 0;
-        lastSnapshot = null;
-        firstHandlingProbe = null; // the swapped-in logic is gone before its first message
-        lifecycle = State.STARTING;
-        try {
-            Component fresh = newLogic(factory);
-            fresh.onStart(context);
-            lastSnapshot = snapshotting ? fresh.snapshot() : null;
-            logic = fresh;
-            lifecycle = State.RUNNING;
-            log.info("node {}: component '{}' reset", kernel.nodeId(), name);
-        } catch (Throwable failure) {
-            lifecycle = State.FAILED;
-            log.error("node {}: component '{}' failed to start after the reset; it is FAILED", kernel.nodeId(), name, failure);
-        }
+        logic.reset();
     }
 
     /**
@@ -623,56 +446,6 @@ public final class LocalShell implements Shell {
      * {@code probe}, the new logic's first handling is reported to it (see {@link SwapTimings}).
      */
     void swap(Supplier<? extends Component> newFactory, CompletableFuture<SwapTimings> done, LongConsumer probe) {
-        long startNs = kernel.clock().nanoTime();
-        if (lifecycle != State.RUNNING) {
-            done.completeExceptionally(new IllegalStateException(
-                    "component '" + name + "' is " + lifecycle + "; only a RUNNING component can be swapped"));
-            return;
-        }
-        Component old = logic;
-        Component fresh;
-        ComponentState freshSnapshot;
-        int schemaVersion = -1;
-        try {
-            ComponentState state = old.snapshot();
-            if (state != null) {
-                schemaVersion = state.schemaVersion();
-            }
-            fresh = newLogic(newFactory);
-            if (state != null) {
-                fresh.restore(state);
-            }
-            fresh.onStart(context);
-            freshSnapshot = snapshotting ? fresh.snapshot() : null;
-        } catch (Throwable failure) {
-            log.warn("node {}: swap of component '{}' rolled back; {} stays: {}", kernel.nodeId(), name,
-                    old.getClass().getName(), failure.toString());
-            done.completeExceptionally(failure);
-            return;
-        }
-        logic = fresh;
-        factory = newFactory;
-        lastSnapshot = freshSnapshot;
-        long oldEndNs = lastHandlingEndNs;
-        lastHandlingEndNs = SwapTimings.UNKNOWN_NS;
-        firstHandlingProbe = probe;
-        stopLogic(old);
-        // Debug, not info: this runs inside the pause, where a console write costs tens of
-        // microseconds; the caller of the swap reports it (EtherwareNode.swap, the management service).
-        log.debug("node {}: component '{}' swapped from {} to {}", kernel.nodeId(), name, old.getClass().getName(),
-                fresh.getClass().getName());
-        done.complete(new SwapTimings(oldEndNs, startNs, kernel.clock().nanoTime(), schemaVersion));
-    }
-
-    private Component newLogic(Supplier<? extends Component> from) {
-        return Objects.requireNonNull(from.get(), () -> "the factory of component '" + name + "' returned null");
-    }
-
-    private void stopLogic(Component stopping) {
-        try {
-            stopping.onStop();
-        } catch (Throwable failure) {
-            log.warn("node {}: onStop of component '{}' threw; ignored", kernel.nodeId(), name, failure);
-        }
+        logic.swap(newFactory, done, probe);
     }
 }
