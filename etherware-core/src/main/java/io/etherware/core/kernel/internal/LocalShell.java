@@ -11,12 +11,10 @@ import io.etherware.core.message.Profile;
 import io.etherware.core.scheduler.Job;
 import java.lang.invoke.MethodHandles;
 import java.lang.invoke.VarHandle;
-import java.util.ArrayDeque;
 import java.util.List;
 import java.util.Objects;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.atomic.AtomicBoolean;
-import java.util.concurrent.atomic.AtomicInteger;
 import java.util.function.LongConsumer;
 import java.util.function.Supplier;
 
@@ -75,14 +73,8 @@ public final class LocalShell implements Shell {
     private CompletableFuture<Void> switched;
     private ProfileTable relocationRegistry;
 
-    /** Requests of this component whose outcome has not been handed to it yet. */
-    private final AtomicInteger awaitingOutcomes = new AtomicInteger();
-    /** A hold or swap waiting for the component to be quiescent, until {@code byNs} at the latest. */
-    private record Pending(Runnable action, long byNs) {
-    }
-
-    /** The holds and swaps waiting for quiescence ({@link #whenSettled}), in request order; owner. */
-    private final ArrayDeque<Pending> pendingActions = new ArrayDeque<>();
+    /** The holds and swaps waiting for the component to be quiescent. */
+    private final SettleQueue settling;
 
     LocalShell(KernelCore kernel, Profile profile, Supplier<? extends Component> factory, SupervisionPolicy policy) {
         this.kernel = kernel;
@@ -92,6 +84,7 @@ public final class LocalShell implements Shell {
         Objects.requireNonNull(policy, "policy");
         this.endpoint = new Endpoint.Local(this);
         this.gate = new ComponentGate(kernel, name);
+        this.settling = new SettleQueue(kernel.clock());
         this.logic = new ComponentLogic(kernel.nodeId(), kernel.clock(), profile, factory, policy,
                 new ShellContext(kernel, this), kernel.supervision());
     }
@@ -201,21 +194,19 @@ public final class LocalShell implements Shell {
             if (counted) {
                 leftJob(job);
             }
-            if (!pendingActions.isEmpty()) {
-                runSettled(false);
-            }
+            settling.runDue();
             gate.leave();
         }
     }
 
-    /** A request of this component was registered: its outcome is awaited. Any thread. */
+    /** See {@link SettleQueue#requestSent}. */
     void requestSent() {
-        awaitingOutcomes.incrementAndGet();
+        settling.requestSent();
     }
 
-    /** The outcome of a request of this component was handed to it, or the request was never sent. */
+    /** See {@link SettleQueue#requestSettled}. */
     void requestSettled() {
-        awaitingOutcomes.decrementAndGet();
+        settling.requestSettled();
     }
 
     /** Owner, at a boundary: holds now and completes {@code held}, unless it is done already. */
@@ -226,54 +217,14 @@ public final class LocalShell implements Shell {
         }
     }
 
-    /**
-     * Owner, at a boundary: queues {@code action} behind those already waiting, then runs, in
-     * order, every waiting action whose turn has come: all of them if the component awaits no
-     * outcome of its requests, else those whose {@code byNs} has passed (or all, if {@code now}),
-     * stopping at the first that must wait, so that a later hold or swap never runs before an
-     * earlier one. Every later boundary tries again. An action must tolerate running after it is
-     * no longer wanted (the deadline's timer tries again too).
-     */
+    /** See {@link SettleQueue#whenSettled}. */
     void whenSettled(Runnable action, long byNs, boolean now) {
-        pendingActions.addLast(new Pending(action, byNs));
-        runSettled(now);
+        settling.whenSettled(action, byNs, now);
     }
 
-    /** Owner, at a boundary: the waiting actions whose turn has come, in order. */
-    private void runSettled(boolean now) {
-        while (!pendingActions.isEmpty()) {
-            Pending head = pendingActions.peekFirst();
-            if (!now && awaitingOutcomes.get() > 0 && kernel.clock().nanoTime() - head.byNs() < 0) {
-                return;
-            }
-            pendingActions.pollFirst();
-            head.action().run();
-        }
-    }
-
-    /**
-     * Owner, at a boundary: the deadline of {@code action} has passed; runs it and every action
-     * queued before it (those, if still pending, are due no later), in order.
-     */
+    /** See {@link SettleQueue#settleDeadline}. */
     void settleDeadline(Runnable action) {
-        boolean queued = false;
-        for (Pending pending : pendingActions) {
-            if (pending.action() == action) {
-                queued = true;
-                break;
-            }
-        }
-        if (!queued) {
-            return; // it ran already
-        }
-        while (!pendingActions.isEmpty()) {
-            Pending head = pendingActions.pollFirst();
-            head.action().run();
-            if (head.action() == action) {
-                break;
-            }
-        }
-        runSettled(false);
+        settling.settleDeadline(action);
     }
 
     /** A counted job ran or was forwarded. */
