@@ -17,6 +17,7 @@ import java.util.Set;
 import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.atomic.AtomicLong;
 import java.util.concurrent.atomic.LongAdder;
+import java.util.function.BooleanSupplier;
 import java.util.function.Consumer;
 import java.util.function.Supplier;
 import org.slf4j.Logger;
@@ -25,8 +26,9 @@ import org.slf4j.LoggerFactory;
 /**
  * The kernel's delivery of a message whose destination is resolved: as a job of a local component
  * (made and submitted to the scheduler), along a route to another node, or back to its sender as
- * undeliverable. Also delivers request outcomes to requesting components and counts the jobs,
- * the undeliverable messages, the discarded jobs and the queued bytes from each neighbour node.
+ * undeliverable; and of a message that reached a component that no longer runs. Also delivers
+ * request outcomes to requesting components and counts the jobs, the undeliverable messages, the
+ * discarded jobs and the queued bytes from each neighbour node.
  *
  * <p>Owned by {@link KernelCore}, which resolves profiles and hands messages here.
  *
@@ -51,6 +53,8 @@ final class Delivery {
     /** The kernel's send, through which an undeliverable notice goes to the sender. */
     private final Consumer<Message> send;
     private final Supplier<MessageId> newMessageId;
+    /** Whether the node is closing or closed. */
+    private final BooleanSupplier closing;
     private final AtomicLong jobSequence = new AtomicLong();
     /** Bytes of queued messages from the network, by the node they came through. */
     private final ConcurrentHashMap<String, LongAdder> inboundBytes = new ConcurrentHashMap<>();
@@ -62,15 +66,17 @@ final class Delivery {
     /**
      * @param send         the kernel's send (taps, reply correlation, resolution), for notices
      * @param newMessageId the kernel's message ids, for notices
+     * @param closing      whether the node is closing or closed
      */
     Delivery(String nodeId, Profile nodeProfile, NodeClock clock, Scheduler scheduler, Consumer<Message> send,
-             Supplier<MessageId> newMessageId) {
+             Supplier<MessageId> newMessageId, BooleanSupplier closing) {
         this.nodeId = nodeId;
         this.nodeProfile = nodeProfile;
         this.clock = clock;
         this.scheduler = scheduler;
         this.send = send;
         this.newMessageId = newMessageId;
+        this.closing = closing;
     }
 
     /** Makes {@code message} a job of {@code shell} and submits it (or forwards it, if it relocated). */
@@ -173,9 +179,15 @@ final class Delivery {
         }
     }
 
-    /** Counts a message dropped, not delivered, because the node is closing. */
-    void countDiscarded() {
-        discarded.increment();
+    /** A message reached a component that does not run (owner thread of {@code shell}). */
+    void notRunning(LocalShell shell, Message message) {
+        if (closing.getAsBoolean()) {
+            discarded.increment();
+        } else if (shell.isRemoved()) {
+            send.accept(message); // re-resolve: the profile may live elsewhere now (migration)
+        } else {
+            undeliverable(message, "component '" + shell.name() + "' is " + shell.state());
+        }
     }
 
     /** Counts an undeliverable message and tells its sender, if there is one to tell. */

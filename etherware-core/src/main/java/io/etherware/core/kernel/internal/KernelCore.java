@@ -82,7 +82,8 @@ public final class KernelCore implements ComponentHost, JobRunner {
         this.scheduler = Objects.requireNonNull(config.scheduler().get(), "the scheduler factory returned null");
         // Ties in arrival order, whatever the scheduler's comparator does with them.
         this.urgency = scheduler.urgency().thenComparingLong(Job::sequence);
-        this.delivery = new Delivery(nodeId, nodeProfile, clock, scheduler, this::send, this::newMessageId);
+        this.delivery = new Delivery(nodeId, nodeProfile, clock, scheduler, this::send, this::newMessageId,
+                this::isClosing);
         this.requests = new RequestTable(nodeId, delivery::deliverOutcome, this::mayAnswer, this::send);
         this.reconfiguration = new Reconfiguration(clock, registry, requests);
         this.supervision = new Supervision(nodeId, clock, config.escalation(), requests, shells, this::send,
@@ -165,11 +166,6 @@ public final class KernelCore implements ComponentHost, JobRunner {
     /** Removes a tap; it sees no message sent after this returns. */
     public boolean removeTap(MessageTap tap) {
         return taps.remove(tap);
-    }
-
-    /** See {@link Delivery#countInbound}. */
-    void countInbound(Message message, int sign) {
-        delivery.countInbound(message, sign);
     }
 
     /**
@@ -285,18 +281,11 @@ public final class KernelCore implements ComponentHost, JobRunner {
         delivery.discard(job);
     }
 
-    // ---------------------------------------------------------------- undeliverable and failures
+    // ---------------------------------------------------------------- parts the shells use
 
-    /** A message reached a component that does not run (owner thread of {@code shell}). */
-    void notRunning(LocalShell shell, Message message) {
-        NodeState now = state;
-        if (now == NodeState.CLOSING || now == NodeState.CLOSED) {
-            delivery.countDiscarded();
-        } else if (shell.isRemoved()) {
-            send(message); // re-resolve: the profile may live elsewhere now (migration)
-        } else {
-            delivery.undeliverable(message, "component '" + shell.name() + "' is " + shell.state());
-        }
+    /** Jobs, routes and undeliverable notices, for the shells. */
+    Delivery delivery() {
+        return delivery;
     }
 
     /** Failure reports and escalation, for the shells. */
@@ -383,11 +372,6 @@ public final class KernelCore implements ComponentHost, JobRunner {
         return reconfiguration.snapshotAsync(shells.local(profile));
     }
 
-    /** Hands a message to a route; a refusal makes it undeliverable. */
-    void forward(Message message, RemoteRoute route) {
-        delivery.deliverRemote(message, route);
-    }
-
     public Shell shell(Profile profile) {
         return shells.local(profile);
     }
@@ -417,6 +401,11 @@ public final class KernelCore implements ComponentHost, JobRunner {
 
     public boolean isClosed() {
         return state == NodeState.CLOSED;
+    }
+
+    private boolean isClosing() {
+        NodeState now = state;
+        return now == NodeState.CLOSING || now == NodeState.CLOSED;
     }
 
     /** Completes when the node has closed. */

@@ -48,6 +48,8 @@ public final class LocalShell implements Shell {
     }
 
     private final KernelCore kernel;
+    /** Where the messages of a component that does not run go. */
+    private final Delivery delivery;
     private final Profile profile;
     private final String name;
     private final Endpoint.Local endpoint;
@@ -78,6 +80,7 @@ public final class LocalShell implements Shell {
 
     LocalShell(KernelCore kernel, Profile profile, Supplier<? extends Component> factory, SupervisionPolicy policy) {
         this.kernel = kernel;
+        this.delivery = kernel.delivery();
         this.profile = Objects.requireNonNull(profile, "profile");
         this.name = profile.toString();
         Objects.requireNonNull(factory, "factory");
@@ -232,7 +235,7 @@ public final class LocalShell implements Shell {
         if (job.sequence() >= Delivery.PEN_OFFSET) {
             pen.leftPenned();
         }
-        kernel.countInbound(job.message(), -1);
+        delivery.countInbound(job.message(), -1);
         leaveQueue();
     }
 
@@ -324,7 +327,7 @@ public final class LocalShell implements Shell {
         // New arrivals park at the gate meanwhile, so the kept messages go out first.
         gate.drainKept(() -> { }, kept -> {
             if (kept.target() == this) {
-                kernel.forward(kept.message(), to.route());
+                delivery.deliverRemote(kept.message(), to.route());
                 if (kept.sequence() >= Delivery.PEN_OFFSET) {
                     pen.leftPenned();
                 }
@@ -369,9 +372,9 @@ public final class LocalShell implements Shell {
         if (logic.state() != State.RUNNING) {
             Endpoint.Remote to = forwardTo;
             if (to != null) {
-                kernel.forward(message, to.route()); // relocated: in the order taken
+                delivery.deliverRemote(message, to.route()); // relocated: in the order taken
             } else {
-                kernel.notRunning(this, message);
+                delivery.notRunning(this, message);
             }
             return;
         }
