@@ -37,14 +37,19 @@ import org.slf4j.LoggerFactory;
 
 /**
  * The kernel of a node (paper Section III-A): resolves profiles, runs jobs through the component
- * gates ({@link LocalShell}), correlates requests and supervises failures. What becomes of a
- * message once its destination is resolved (a job for the scheduler, a route to another node, an
- * undeliverable notice to its sender) is {@link Delivery}'s.
+ * gates ({@link LocalShell}), and keeps the node's lifecycle and the entry and exit of its
+ * components. Its parts, each given what it needs when the kernel is built: {@link Delivery} (what
+ * becomes of a message once its destination is resolved: a job, a route, an undeliverable notice),
+ * {@link RequestTable} (requests and their replies), {@link ShellTable} (the hosted components and
+ * their counters), {@link Supervision} (failure reports, escalation), {@link Reconfiguration}
+ * (hold, swap, snapshot, relocation) and {@link Taps}.
  *
  * <p>The per-message path ({@link #send}, {@link #run}) takes no lock when the receiver is free,
  * logs nothing and allocates only the job (the sender allocates the message).
  *
- * <p>Thread-safety: every method may be called from any thread; lifecycle changes are serialized.
+ * <p>Thread-safety: every method may be called from any thread; lifecycle changes are serialized
+ * on the lifecycle lock, held while the node starts or begins to close and while a component is
+ * made and registered or unregistered (inside it, {@link ProfileTable} takes its own).
  */
 public final class KernelCore implements ComponentHost, JobRunner {
 
