@@ -63,8 +63,11 @@ public final class ControlCommand implements Runnable {
             + " network listens.")
     private String node;
 
-    @Option(names = "--id", paramLabel = "NAME", defaultValue = "control", description = "This tool's node id, which"
-            + " the node's access list names (default: ${DEFAULT-VALUE}; with TLS, its certificate's CN).")
+    /** The id when neither {@code --id} nor a TLS certificate names one. */
+    public static final String DEFAULT_ID = "control";
+
+    @Option(names = "--id", paramLabel = "NAME", description = "This tool's node id, which the node's access list"
+            + " names (default: with TLS, its certificate's CN, otherwise " + DEFAULT_ID + ").")
     private String id;
 
     @Option(names = "--json", description = "Print the answer as JSON.")
@@ -119,14 +122,19 @@ public final class ControlCommand implements Runnable {
         Duration wait;
         InetSocketAddress address;
         ConnectionFactory factory;
+        String as;
         try {
             wait = Durations.parse(timeout);
             address = address(node);
             factory = connectionFactory();
+            if (lanes < 1 || lanes > 2) {
+                throw new IllegalArgumentException("--lanes=" + lanes + ": must be 1 or 2, as the node's network has");
+            }
+            as = nodeId(factory);
         } catch (IllegalArgumentException | IOException e) {
             throw new ParameterException(command.commandLine(), e.getMessage());
         }
-        try (ControlSession session = ControlSession.open(id, address, factory, lanes, insecure, wait)) {
+        try (ControlSession session = ControlSession.open(as, address, factory, lanes, insecure, wait)) {
             Answer answer = request.ask(session, wait);
             out.println(json ? answer.json() : answer.text());
             out.flush();
@@ -136,6 +144,20 @@ public final class ControlCommand implements Runnable {
             err.flush();
             return FAILED;
         }
+    }
+
+    /** The tool's node id: {@code --id}, else the certificate's CN with TLS, else {@value #DEFAULT_ID}. */
+    private String nodeId(ConnectionFactory factory) {
+        String named = factory.localNodeId().orElse(null);
+        if (id != null && named != null && !id.equals(named)) {
+            throw new IllegalArgumentException("--id=" + id + ", but the key store's certificate names '" + named
+                    + "': with TLS the id is the certificate's CN; drop --id or use that node's key store");
+        }
+        String chosen = id != null ? id : named != null ? named : DEFAULT_ID;
+        if (!Profile.isName(chosen)) {
+            throw new IllegalArgumentException("--id=" + chosen + ": use letters, digits, '_', '.' and '-'");
+        }
+        return chosen;
     }
 
     private ConnectionFactory connectionFactory() throws IOException {

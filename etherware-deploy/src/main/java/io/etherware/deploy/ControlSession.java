@@ -50,8 +50,12 @@ final class ControlSession implements AutoCloseable {
      */
     static ControlSession open(String id, InetSocketAddress target, ConnectionFactory factory, int lanes,
             boolean insecure, Duration timeout) throws ControlException {
-        EtherwareNode node = EtherwareNode.builder().nodeId(id).scheduler(() -> new FifoScheduler("control"))
-                .build().start();
+        EtherwareNode node;
+        try {
+            node = EtherwareNode.builder().nodeId(id).scheduler(() -> new FifoScheduler("control")).build().start();
+        } catch (RuntimeException e) {
+            throw new ControlException("the tool's node '" + id + "' cannot start: " + e.getMessage(), e);
+        }
         NetworkMessenger network = null;
         try {
             Status.registerContents(node.contentsTypes());
@@ -69,7 +73,7 @@ final class ControlSession implements AutoCloseable {
             }
             network = NetworkMessenger.start(node, config);
             long deadline = System.nanoTime() + timeout.toNanos();
-            Optional<String> connected = awaitPeer(network, deadline);
+            Optional<String> connected = awaitPeer(network, target, deadline);
             if (connected.isEmpty()) {
                 throw new ControlException("no node answered at " + hostPort(target) + " within " + timeout.toMillis()
                         + " ms: is it running, and does it listen there" + (factory.authenticatesPeers()
@@ -86,22 +90,25 @@ final class ControlSession implements AutoCloseable {
             return new ControlSession(node, network, connected.get());
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
-            network.close();
-            node.close();
+            closeBoth(network, node);
             throw new ControlException("interrupted while connecting", e);
-        } catch (ControlException | RuntimeException e) {
-            if (network != null) {
-                network.close();
-            }
-            node.close();
+        } catch (ControlException e) {
+            closeBoth(network, node);
             throw e;
+        } catch (RuntimeException e) {
+            closeBoth(network, node);
+            throw new ControlException("cannot connect to " + hostPort(target) + ": " + e.getMessage(), e);
         }
     }
 
-    private static Optional<String> awaitPeer(NetworkMessenger network, long deadline) throws ControlException {
+    /** The id of the node that answered at {@code target}: not any peer that dialed the tool's own port. */
+    private static Optional<String> awaitPeer(NetworkMessenger network, InetSocketAddress target, long deadline)
+            throws ControlException {
+        String dialed = target.getAddress().getHostAddress() + ":" + target.getPort();
         while (System.nanoTime() - deadline < 0) {
             for (PeerStatus peer : network.peers()) {
-                if (peer.connected()) {
+                if (peer.connected() && peer.remote().filter(remote -> remote.endsWith("/" + dialed)
+                        || remote.equals(dialed)).isPresent()) {
                     return Optional.of(peer.nodeId());
                 }
             }
@@ -115,8 +122,18 @@ final class ControlSession implements AutoCloseable {
         return Optional.empty();
     }
 
+    private static void closeBoth(NetworkMessenger network, EtherwareNode node) {
+        try {
+            if (network != null) {
+                network.close();
+            }
+        } finally {
+            node.close();
+        }
+    }
+
     static String hostPort(InetSocketAddress address) {
-        return address.getHostString() + ":" + address.getPort();
+        return Launcher.hostPort(address);
     }
 
     /** {@return the tool's own node} */
@@ -149,8 +166,7 @@ final class ControlSession implements AutoCloseable {
 
     @Override
     public void close() {
-        Objects.requireNonNull(network, "network").close();
-        node.close();
+        closeBoth(Objects.requireNonNull(network, "network"), node);
     }
 
     /** A control request that could not be made; its message says why and what to check. */

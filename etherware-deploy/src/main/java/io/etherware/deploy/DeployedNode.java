@@ -94,7 +94,7 @@ public final class DeployedNode implements AutoCloseable {
             Notifier notifier = deployment.notifier().map(plan -> Notifier.install(started, plan.config()))
                     .orElse(null);
             if (deployment.network().isPresent()) {
-                network = NetworkMessenger.start(node, deployment.network().get());
+                network = startNetwork(deployment, node);
             }
             NetworkMessenger messenger = network;
             deployment.management().ifPresent(config -> ManagementService.install(started, config, messenger));
@@ -107,15 +107,38 @@ public final class DeployedNode implements AutoCloseable {
                     deployment.file(), deployment.scheduler().description(), deployment.components().size(),
                     network != null ? ", listening on " + network.localAddress() : "");
             return deployed;
-        } catch (DeploymentException | RuntimeException e) {
+        } catch (DeploymentException | RuntimeException | Error e) {
             closeQuietly(network, "network");
             closeQuietly(node, "node");
             closeAll(resources);
             if (e instanceof DeploymentException deploymentException) {
                 throw deploymentException;
             }
+            if (e instanceof Error error && !(error instanceof LinkageError)) {
+                throw error;
+            }
             throw new DeploymentException(deployment.file(), 0, 0, "node " + deployment.nodeId() + " did not start: "
                     + e.getMessage(), e);
+        }
+    }
+
+    private static NetworkMessenger startNetwork(Deployment deployment, EtherwareNode node)
+            throws DeploymentException {
+        var config = deployment.network().orElseThrow();
+        if (config.isInsecureBeyondLoopback() && deployment.management().map(m -> m.allowUnauthenticatedLinks())
+                .orElse(false)) {
+            LOG.warn("node {}: plain TCP beyond loopback (insecure=\"true\") and a management service that trusts"
+                    + " unauthenticated links (allowUnauthenticatedLinks=\"true\"): any host that reaches {} may"
+                    + " claim to be a node of the access list; use <tls> between machines", deployment.nodeId(),
+                    config.listenAddress());
+        }
+        try {
+            return NetworkMessenger.start(node, config);
+        } catch (RuntimeException e) {
+            throw new DeploymentException(deployment.file(), 0, 0, "<network listen=\"" + config.listenAddress()
+                    .getHostString() + ":" + config.listenAddress().getPort() + "\">: the network did not start ("
+                    + e.getMessage() + "); if another process listens there, stop it or choose another address"
+                    + " (-P, or port 0 for any free port)", e);
         }
     }
 
@@ -130,7 +153,7 @@ public final class DeployedNode implements AutoCloseable {
                     return resource;
                 }
             });
-        } catch (RuntimeException e) {
+        } catch (RuntimeException | LinkageError e) {
             throw new DeploymentException(deployment.file(), plan.line(), 0, "<component profile=\"" + plan.profile()
                     + "\" class=\"" + plan.className() + "\">: its factory failed: " + e, e);
         }

@@ -98,7 +98,7 @@ public final class DeploymentReader {
             }
             components.add(plan);
         }
-        var sections = new NetworkSections(at);
+        var sections = new NetworkSections(at, nodeId);
         return new Deployment(file, nodeId, scheduler.plan, notifier, components,
                 root.child("network").isPresent() ? Optional.of(sections.network(root.child("network").orElseThrow()))
                         : Optional.empty(),
@@ -114,7 +114,8 @@ public final class DeploymentReader {
         if (element.isPresent() && element.get().attribute("type").orElse("realtime").equals("fifo")) {
             XmlElement fifo = element.get();
             for (String realtimeOnly : List.of("realtimeCpus", "lockMemory")) {
-                if (fifo.attribute(realtimeOnly).filter(v -> !v.equals("false")).isPresent()) {
+                if (fifo.attribute(realtimeOnly).isPresent() && (realtimeOnly.equals("realtimeCpus")
+                        || flag(fifo, realtimeOnly, false))) {
                     throw at.problem(fifo, "<scheduler type=\"fifo\"> has " + realtimeOnly + "=\""
                             + fifo.attributes().get(realtimeOnly) + "\", which only type=\"realtime\" uses; remove it");
                 }
@@ -143,8 +144,8 @@ public final class DeploymentReader {
                     throw at.problem(scheduler, "<scheduler>'s dispatchers: " + e.getMessage());
                 }
             }
-            builder.lockMemory(Boolean.parseBoolean(scheduler.attribute("lockMemory").orElse("false")))
-                    .holdCpuLatency(Boolean.parseBoolean(scheduler.attribute("holdCpuLatency").orElse("true")));
+            builder.lockMemory(flag(scheduler, "lockMemory", false))
+                    .holdCpuLatency(flag(scheduler, "holdCpuLatency", true));
             if (scheduler.attribute("realtimeCpus").isPresent()) {
                 builder.realtimeCpus(cpus(at, scheduler, "realtimeCpus"));
             }
@@ -224,8 +225,13 @@ public final class DeploymentReader {
     }
 
     private Deployment.ComponentPlan component(Place at, XmlElement element) throws DeploymentException {
-        Profile profile = Profile.parse(element.attributes().get("profile"));
         String className = element.attributes().get("class");
+        Profile profile;
+        try {
+            profile = Profile.parse(element.attributes().get("profile"));
+        } catch (IllegalArgumentException e) {
+            throw at.problem(element, "<component class=\"" + className + "\">: " + e.getMessage());
+        }
         String head = "<component profile=\"" + profile + "\" class=\"" + className + "\">: ";
         Class<?> type;
         try {
@@ -312,6 +318,15 @@ public final class DeploymentReader {
         } catch (ReflectiveOperationException | LinkageError e) {
             throw at.problem(element, head + "cannot be made: " + e);
         }
+    }
+
+    /**
+     * An {@code xs:boolean} attribute: {@code true} or {@code 1} is true, {@code false} or
+     * {@code 0} false (the schema allows nothing else).
+     */
+    static boolean flag(XmlElement element, String attribute, boolean defaultValue) {
+        return element.attribute(attribute).map(String::strip).map(v -> v.equals("true") || v.equals("1"))
+                .orElse(defaultValue);
     }
 
     static CpuSet cpus(Place at, XmlElement element, String attribute) throws DeploymentException {

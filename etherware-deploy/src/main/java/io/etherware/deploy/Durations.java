@@ -36,10 +36,11 @@ final class Durations {
             case "s" -> 1_000_000_000L;
             default -> 60_000_000_000L;
         };
-        BigDecimal nanos = new BigDecimal(matcher.group(1)).multiply(BigDecimal.valueOf(unitNs));
+        BigDecimal nanos = new BigDecimal(matcher.group(1)).multiply(BigDecimal.valueOf(unitNs))
+                .setScale(0, java.math.RoundingMode.HALF_UP);
         if (nanos.signum() <= 0 || nanos.compareTo(BigDecimal.valueOf(MAX_NS)) > 0) {
-            throw new IllegalArgumentException("'" + text + "' must be more than 0 and at most a day");
+            throw new IllegalArgumentException("'" + text + "' must be at least 1ns and at most a day");
         }
-        return Duration.ofNanos(nanos.setScale(0, java.math.RoundingMode.HALF_UP).longValueExact());
+        return Duration.ofNanos(nanos.longValueExact());
     }
 }

@@ -68,8 +68,11 @@ public final class Launcher implements Callable<Integer> {
         System.exit(new CommandLine(new Launcher()).execute(args));
     }
 
-    private static String hostPort(InetSocketAddress address) {
-        return address.getHostString() + ":" + address.getPort();
+    /** {@code HOST:PORT}, an IPv6 address in brackets, as the deployment file writes addresses. */
+    static String hostPort(InetSocketAddress address) {
+        String host = address.getAddress() instanceof java.net.Inet6Address ? "[" + address.getAddress()
+                .getHostAddress() + "]" : address.getHostString();
+        return host + ":" + address.getPort();
     }
 
     @Override

@@ -26,16 +26,18 @@ import java.util.Set;
 final class NetworkSections {
 
     private final DeploymentReader.Place at;
+    private final String nodeId;
 
-    NetworkSections(DeploymentReader.Place at) {
+    NetworkSections(DeploymentReader.Place at, String nodeId) {
         this.at = at;
+        this.nodeId = nodeId;
     }
 
     NetworkConfig network(XmlElement element) throws DeploymentException {
         NetworkConfig.Builder builder = NetworkConfig.builder()
                 .listen(address(element, "listen", element.attributes().get("listen")))
                 .lanes(Integer.parseInt(element.attribute("lanes").orElse("2")))
-                .insecure(Boolean.parseBoolean(element.attribute("insecure").orElse("false")));
+                .insecure(DeploymentReader.flag(element, "insecure", false));
         for (XmlElement peer : element.children("peer")) {
             builder.peer(address(peer, "address", peer.attributes().get("address")));
         }
@@ -47,11 +49,18 @@ final class NetworkSections {
             char[] keyPassword = password(tls, "keyStorePasswordFile");
             char[] trustPassword = password(tls, "trustStorePasswordFile");
             try {
-                builder.connectionFactory(ConnectionFactory.tls(resolve(tls.attributes().get("keyStore")), keyPassword,
-                        resolve(tls.attributes().get("trustStore")), trustPassword));
+                ConnectionFactory factory = ConnectionFactory.tls(resolve(tls.attributes().get("keyStore")),
+                        keyPassword, resolve(tls.attributes().get("trustStore")), trustPassword);
+                String named = factory.localNodeId().orElse(null);
+                if (named != null && !named.equals(nodeId)) {
+                    throw at.problem(tls, "<tls keyStore=\"" + tls.attributes().get("keyStore") + "\">: its"
+                            + " certificate names node '" + named + "', but this is node '" + nodeId + "': a node's id"
+                            + " is its certificate's CN; use that node's key store, or id=\"" + named + "\"");
+                }
+                builder.connectionFactory(factory);
             } catch (IOException e) {
-                throw at.problem(tls, "<tls>: " + e.getMessage() + "; the stores are PKCS#12 (see DEPLOYMENT.md for"
-                        + " making them with keytool)");
+                throw at.problem(tls, "<tls>: " + e.getMessage() + "; the stores are PKCS#12 (see the README's"
+                        + " Security section for making them with keytool)");
             } finally {
                 java.util.Arrays.fill(keyPassword, '\0');
                 java.util.Arrays.fill(trustPassword, '\0');
@@ -60,7 +69,8 @@ final class NetworkSections {
         try {
             return builder.build();
         } catch (IllegalArgumentException | NullPointerException e) {
-            throw at.problem(element, "<network>: " + e.getMessage() + (e.getMessage().contains("beyond loopback")
+            throw at.problem(element, "<network>: " + e.getMessage() + (String.valueOf(e.getMessage()).contains(
+                    "beyond loopback")
                     ? " (in this file: add <tls .../> to <network>, or insecure=\"true\" on a network you trust)"
                     : ""));
         }
@@ -68,8 +78,7 @@ final class NetworkSections {
 
     ManagementConfig management(XmlElement element) throws DeploymentException {
         ManagementConfig.Builder builder = ManagementConfig.builder()
-                .allowUnauthenticatedLinks(Boolean.parseBoolean(element.attribute("allowUnauthenticatedLinks")
-                        .orElse("false")));
+                .allowUnauthenticatedLinks(DeploymentReader.flag(element, "allowUnauthenticatedLinks", false));
         if (element.attribute("settleWait").isPresent()) {
             try {
                 builder.settleWait(Durations.parse(element.attributes().get("settleWait")));

@@ -24,12 +24,11 @@ final class StatusText {
         out.append('\n');
         var nodes = new ArrayList<List<String>>();
         nodes.add(List.of("NODE", "CONNECTED", "ADDRESS", "QUEUED", "PROFILES", "CLOCK OFFSET µs", "RTT µs"));
-        nodes.add(List.of(status.nodeId() + " (asked)", "-", "-", "-",
-                Integer.toString(status.components().size()), "0", "-"));
+        nodes.add(List.of(status.nodeId() + " (asked)", "-", "-", "-", "-", "-", "-"));
         for (NodeStatus.PeerEntry peer : status.peers()) {
             nodes.add(List.of(peer.nodeId(), peer.connected() ? "yes" : "no", peer.remote().isEmpty() ? "-"
                     : peer.remote(), Integer.toString(peer.queued()), Integer.toString(peer.profiles()),
-                    micros(peer.clockOffsetNs()), micros(peer.roundTripNs())));
+                    signedMicros(peer.clockOffsetNs()), micros(peer.roundTripNs())));
         }
         table(out, nodes);
         out.append('\n');
@@ -73,7 +72,25 @@ final class StatusText {
 
     static String format(ManagementFailure failure) {
         return failure.operation() + " of " + failure.target() + " refused or failed: " + failure.reason() + ": "
-                + failure.error();
+                + printable(failure.error());
+    }
+
+    /** A peer's text with its control characters written as escapes, so it cannot drive the terminal. */
+    private static String printable(String text) {
+        var out = new StringBuilder(text.length());
+        text.codePoints().forEach(c -> {
+            if (Character.isISOControl(c)) {
+                out.append(String.format(Locale.ROOT, "\\u%04x", c));
+            } else {
+                out.appendCodePoint(c);
+            }
+        });
+        return out.toString();
+    }
+
+    /** A clock offset: signed, "-" only when not known yet. */
+    private static String signedMicros(Long nanos) {
+        return nanos == null ? "-" : String.format(Locale.ROOT, "%+.1f", nanos / 1_000.0);
     }
 
     private static String micros(Long nanos) {

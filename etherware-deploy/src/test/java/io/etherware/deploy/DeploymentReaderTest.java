@@ -36,7 +36,6 @@ class DeploymentReaderTest {
 
     @Test
     void shouldReadEveryElementOfAFullDeployment() throws Exception {
-        Files.writeString(dir.resolve("signer.pem"), "");
         Path file = write("full.xml", """
                 <?xml version="1.0" encoding="UTF-8"?>
                 <node id="node-a">
@@ -147,7 +146,16 @@ class DeploymentReaderTest {
                 Arguments.of("a bad profile", "<node id=\"n\">\n<component profile=\"a[b]\" class=\"" + COUNTER
                         + "\"/>\n</node>", 2, new String[] {"a[b]", "role[key=value"}),
                 Arguments.of("a bad address", "<node id=\"n\">\n<network listen=\"localhost\"/>\n</node>", 2,
-                        new String[] {"localhost", "HOST:PORT"}),
+                        new String[] {"localhost", "'listen'", "'network'", "HOST:PORT"}),
+                Arguments.of("three lanes", "<node id=\"n\">\n<network listen=\"127.0.0.1:0\" lanes=\"3\"/>\n</node>", 2,
+                        new String[] {"'lanes'", "'network'", "1 or 2"}),
+                Arguments.of("a profile with a key twice", "<node id=\"n\">\n<component profile=\"a[k=1,k=2]\""
+                        + " class=\"" + COUNTER + "\"/>\n</node>", 2, new String[] {"'k' given twice"}),
+                Arguments.of("two plugin directories", "<node id=\"n\">\n<management>\n<plugins directory=\"a\""
+                        + " trustedSigner=\"a.pem\"/>\n<plugins directory=\"b\" trustedSigner=\"b.pem\"/>\n"
+                        + "</management>\n</node>", 4, new String[] {"plugins"}),
+                Arguments.of("a duration below a nanosecond", "<node id=\"n\">\n<management settleWait=\"0.2ns\"/>\n"
+                        + "</node>", 2, new String[] {"at least 1ns"}),
                 Arguments.of("a port above 65535", "<node id=\"n\">\n<network listen=\"127.0.0.1:70000\"/>\n</node>",
                         2, new String[] {"70000", "65535"}),
                 Arguments.of("an unknown class", "<node id=\"n\">\n<component profile=\"a\""
@@ -212,6 +220,28 @@ class DeploymentReaderTest {
         for (String mention : mentions) {
             assertTrue(e.getMessage().contains(mention), () -> what + ": '" + mention + "' not in: " + e.getMessage());
         }
+    }
+
+    @Test
+    void shouldRefuseAPropertyTheFileDoesNotUse() throws IOException {
+        Path file = write("unused.xml", "<node id=\"n\"><network listen=\"${listen:-127.0.0.1:0}\"/></node>\n");
+
+        var e = assertThrows(DeploymentException.class, () -> new DeploymentReader().read(file,
+                Map.of("lisen", "127.0.0.1:1")));
+
+        assertTrue(e.getMessage().contains("-P lisen") && e.getMessage().contains("[listen]"), e.getMessage());
+    }
+
+    @Test
+    void shouldLeavePropertiesInCommentsAloneAndReadAByteOrderMarkAndOneAsTrue() throws Exception {
+        Path file = write("comments.xml", "\uFEFF<!-- run with -P port=${port} -->\n<node id=\"n\">\n"
+                + "<!-- a comment over\n two lines: ${other} -->\n<network listen=\"${listen:-127.0.0.1:0}\""
+                + " lanes=\"1\" insecure=\"1\"/>\n</node>\n");
+
+        Deployment deployment = new DeploymentReader().read(file);
+
+        assertTrue(deployment.network().orElseThrow().insecure());
+        assertEquals(1, deployment.network().orElseThrow().lanes());
     }
 
     @Test

@@ -49,14 +49,16 @@ public final class XmlReader {
 
     private static final Pattern PROPERTY = Pattern.compile("\\$\\{([A-Za-z0-9_.-]+)(?::-([^}]*))?}");
     /** The fix for a value that is not of one of the schema's simple types, by type name. */
-    private static final Map<String, String> FIXES = Map.of(
-            "DurationText", "write a number and a unit (ns, us, ms, s, min), e.g. 15ms",
-            "HostPort", "write HOST:PORT, e.g. 127.0.0.1:7400",
-            "ProfileText", "write a role or role[key=value,...], e.g. controller[pendulum=1]",
-            "CpuList", "write CPU numbers and ranges, e.g. 1 or 0,2-3",
-            "Name", "use letters, digits, '_', '.' and '-', starting with a letter, digit or '_'",
-            "ClassName", "write a fully qualified Java class name, e.g. com.example.MyFactory",
-            "NodePattern", "write a node id or *");
+    private static final Map<String, String> FIXES = Map.ofEntries(
+            Map.entry("DurationText", "write a number and a unit (ns, us, ms, s, min), e.g. 15ms"),
+            Map.entry("HostPort", "write HOST:PORT, e.g. 127.0.0.1:7400"),
+            Map.entry("ProfileText", "write a role or role[key=value,...], e.g. controller[pendulum=1]"),
+            Map.entry("CpuList", "write CPU numbers and ranges, e.g. 1 or 0,2-3"),
+            Map.entry("Name", "use letters, digits, '_', '.' and '-', starting with a letter, digit or '_'"),
+            Map.entry("ClassName", "write a fully qualified Java class name, e.g. com.example.MyFactory"),
+            Map.entry("NodePattern", "write a node id or *"),
+            Map.entry("Lanes", "write 1 or 2 (every node of a deployment the same)"),
+            Map.entry("OperationList", "write UPGRADE, MIGRATE or both, separated by a space"));
 
     private final Schema schema;
 
@@ -100,33 +102,68 @@ public final class XmlReader {
             throw new DeploymentException(file, 0, 0, "is not UTF-8 text (" + e.getMessage() + "); save it as UTF-8",
                     e);
         }
+        if (text.startsWith("\uFEFF")) {
+            text = text.substring(1); // a byte order mark, as some editors write
+        }
         return parse(file, substitute(file, text, properties));
     }
 
-    /** Replaces each {@code ${name}} line by line, so that lines keep their numbers. */
+    /**
+     * Replaces each {@code ${name}} outside comments, line by line so that lines keep their
+     * numbers: a {@code -P} value is escaped as XML text, a default written in the file is taken
+     * as written. A {@code -P} name the file never uses is refused, as a misspelt one would
+     * otherwise pass silently as its default.
+     */
     static String substitute(Path file, String text, Map<String, String> properties) throws DeploymentException {
         String[] lines = text.split("\n", -1);
         var out = new StringBuilder(text.length());
+        var used = new java.util.HashSet<String>();
+        boolean inComment = false;
         for (int i = 0; i < lines.length; i++) {
-            Matcher matcher = PROPERTY.matcher(lines[i]);
             var line = new StringBuilder();
-            while (matcher.find()) {
-                String value = properties.get(matcher.group(1));
-                if (value == null) {
-                    value = matcher.group(2);
+            String rest = lines[i];
+            while (!rest.isEmpty()) {
+                if (inComment) {
+                    int end = rest.indexOf("-->");
+                    int upTo = end < 0 ? rest.length() : end + 3;
+                    line.append(rest, 0, upTo);
+                    rest = rest.substring(upTo);
+                    inComment = end < 0;
+                    continue;
                 }
-                if (value == null) {
-                    throw new DeploymentException(file, i + 1, matcher.start() + 1, "${" + matcher.group(1)
-                            + "} is not defined: pass -P " + matcher.group(1) + "=VALUE to the launcher, or write ${"
-                            + matcher.group(1) + ":-DEFAULT}", null);
+                int start = rest.indexOf("<!--");
+                String part = start < 0 ? rest : rest.substring(0, start);
+                Matcher matcher = PROPERTY.matcher(part);
+                while (matcher.find()) {
+                    String name = matcher.group(1);
+                    used.add(name);
+                    String value = properties.containsKey(name) ? escape(properties.get(name)) : matcher.group(2);
+                    if (value == null) {
+                        throw new DeploymentException(file, i + 1, line.length() + matcher.start() + 1, "${" + name
+                                + "} is not defined: pass -P " + name + "=VALUE to the launcher, or write ${" + name
+                                + ":-DEFAULT}", null);
+                    }
+                    matcher.appendReplacement(line, Matcher.quoteReplacement(value));
                 }
-                matcher.appendReplacement(line, Matcher.quoteReplacement(escape(value)));
+                matcher.appendTail(line);
+                rest = start < 0 ? "" : rest.substring(start);
+                inComment = start >= 0;
+                if (inComment) {
+                    line.append("<!--");
+                    rest = rest.substring(4);
+                }
             }
-            matcher.appendTail(line);
             out.append(line);
             if (i < lines.length - 1) {
                 out.append('\n');
             }
+        }
+        var unused = new java.util.TreeSet<>(properties.keySet());
+        unused.removeAll(used);
+        if (!unused.isEmpty()) {
+            throw new DeploymentException(file, 0, 0, "-P " + String.join(", -P ", unused) + ": the file has no ${"
+                    + unused.first() + "}; it uses " + (used.isEmpty() ? "no properties" : new java.util.TreeSet<>(used))
+                    + " (check the spelling)", null);
         }
         return out.toString();
     }
@@ -164,6 +201,8 @@ public final class XmlReader {
         private final Deque<Open> open = new ArrayDeque<>();
         private Locator locator;
         private XmlElement root;
+        /** A value's error waiting for the one that names its attribute and element. */
+        private SAXParseException held;
 
         TreeBuilder(Path file) {
             this.file = file;
@@ -202,7 +241,21 @@ public final class XmlReader {
 
         @Override
         public void error(SAXParseException e) throws SAXException {
+            // The schema validator reports a bad value twice: first what the value breaks (a
+            // pattern, a range), then which attribute of which element holds it. Keep the first
+            // for its detail and throw at the second, which names the place.
+            if (held == null && e.getMessage() != null && e.getMessage().matches("cvc-[a-zA-Z]+-valid:.*")) {
+                held = e;
+                return;
+            }
             throw e;
+        }
+
+        @Override
+        public void endDocument() throws SAXException {
+            if (held != null) {
+                throw held;
+            }
         }
 
         @Override
@@ -211,11 +264,13 @@ public final class XmlReader {
         }
 
         DeploymentException problem(SAXParseException e) {
-            String where = open.isEmpty() ? "" : "inside <" + open.peek().name + ">: ";
-            String message = e.getMessage() == null ? "" : e.getMessage().strip();
-            if (message.endsWith(".")) {
-                message = message.substring(0, message.length() - 1);
+            String message = sentence(e);
+            if (held != null && held != e) {
+                message = message + " (" + sentence(held) + ")";
             }
+            // The validator's messages about attributes and elements name the element themselves.
+            String where = open.isEmpty() || message.contains("element '") ? ""
+                    : "inside <" + open.peek().name + ">: ";
             String fix = message.startsWith("cvc-") ? "; see etherware-deployment.xsd"
                     : "; the file must be well-formed XML";
             for (var entry : FIXES.entrySet()) {
@@ -224,6 +279,11 @@ public final class XmlReader {
                 }
             }
             return new DeploymentException(file, e.getLineNumber(), e.getColumnNumber(), where + message + fix, e);
+        }
+
+        private static String sentence(SAXParseException e) {
+            String message = e.getMessage() == null ? e.toString() : e.getMessage().strip();
+            return message.endsWith(".") ? message.substring(0, message.length() - 1) : message;
         }
     }
 

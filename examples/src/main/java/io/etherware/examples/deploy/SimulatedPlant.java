@@ -88,13 +88,20 @@ final class SimulatedPlant implements AutoCloseable {
         return hostEnd;
     }
 
+    /** Starts the board at the first write; synchronized with {@link #close}, so a closed board never starts. */
     private void startOnce() {
-        if (closed.get() || !started.compareAndSet(false, true)) {
-            return;
+        if (started.get()) {
+            return; // every later write: no lock
         }
-        startNs = clock.nanoTime();
-        board.startRealTime(clock, threads.fifo("dsp-board", SimThreads.BOARD_PRIORITY), AbsoluteSleeper.forClock(clock));
-        sampler = Thread.ofPlatform().daemon().name("plant-report").start(this::sample);
+        synchronized (this) {
+            if (closed.get() || !started.compareAndSet(false, true)) {
+                return;
+            }
+            startNs = clock.nanoTime();
+            board.startRealTime(clock, threads.fifo("dsp-board", SimThreads.BOARD_PRIORITY),
+                    AbsoluteSleeper.forClock(clock));
+            sampler = Thread.ofPlatform().daemon().name("plant-report").start(this::sample);
+        }
     }
 
     private void sample() {
@@ -123,8 +130,10 @@ final class SimulatedPlant implements AutoCloseable {
      */
     @Override
     public void close() {
-        if (!closed.compareAndSet(false, true)) {
-            return;
+        synchronized (this) {
+            if (!closed.compareAndSet(false, true)) {
+                return;
+            }
         }
         Thread running = sampler;
         if (running != null) {

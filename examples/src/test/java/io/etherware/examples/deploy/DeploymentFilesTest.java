@@ -14,6 +14,7 @@ import java.nio.file.Path;
 import java.util.List;
 import java.util.Map;
 import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
 
 /** The deployment files the project ships read as they should, and name the pendulum's profiles. */
 class DeploymentFilesTest {
@@ -67,10 +68,9 @@ class DeploymentFilesTest {
     }
 
     @Test
-    void shouldRefuseSimulatorSettingsForARealPort() throws Exception {
+    void shouldRefuseSimulatorSettingsForARealPort(@TempDir Path dir) throws Exception {
         // theta2 means nothing to a real board: a file that gives it with a port is a mistake.
-        Path file = Path.of("target", "real-port-with-theta2.xml");
-        java.nio.file.Files.createDirectories(file.getParent());
+        Path file = dir.resolve("real-port-with-theta2.xml");
         java.nio.file.Files.writeString(file, """
                 <node id="n">
                   <scheduler type="fifo"/>
