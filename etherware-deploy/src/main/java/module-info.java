@@ -3,8 +3,10 @@ module io.etherware.deploy {
     requires transitive io.etherware.services;
     requires java.xml;
     requires info.picocli;
+    requires jdk.httpserver;
 
     exports io.etherware.deploy;
+    exports io.etherware.deploy.view;
 
     opens io.etherware.deploy to info.picocli;
 }
