@@ -2,6 +2,7 @@ package io.etherware.deploy;
 
 import io.etherware.core.component.Component;
 import io.etherware.core.message.ContentsTypes;
+import io.etherware.deploy.view.LiveSignals;
 import java.util.function.Supplier;
 
 /**
@@ -40,7 +41,10 @@ public interface ComponentFactory {
      */
     Supplier<? extends Component> create(Settings settings, Resources resources) throws DeploymentException;
 
-    /** Closes what a {@link ComponentFactory} opened, after the node has closed. */
+    /**
+     * What the node gives a {@link ComponentFactory}: a place for what must be closed after it,
+     * and its live signals.
+     */
     interface Resources {
 
         /**
@@ -52,5 +56,15 @@ public interface ComponentFactory {
          * @return {@code resource}, for chaining
          */
         <T extends AutoCloseable> T closeAfterNode(T resource);
+
+        /**
+         * The node's live signals, for the component to publish measurements into (a controller's
+         * angles and torque): create each signal here, in {@code create}, and record into it from
+         * the component. Its {@code <view>}, if the file has one, plots them and exports their
+         * newest values; without a view they are kept and not shown.
+         *
+         * @return the node's signals, shared by all its factories (signal names are unique per node)
+         */
+        LiveSignals signals();
     }
 }

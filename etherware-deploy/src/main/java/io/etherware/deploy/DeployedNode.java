@@ -5,11 +5,15 @@ import io.etherware.core.kernel.EtherwareNode;
 import io.etherware.core.kernel.ProfileResolutionException;
 import io.etherware.core.message.ContentsTypes;
 import io.etherware.deploy.internal.XmlElement;
+import io.etherware.deploy.view.LiveSignals;
+import io.etherware.deploy.view.NodeView;
 import io.etherware.services.management.ManagementService;
 import io.etherware.services.network.NetworkMessenger;
 import io.etherware.services.notifier.Notifier;
 import io.etherware.services.notifier.Subscription;
+import io.etherware.services.status.Status;
 import io.etherware.services.status.StatusService;
+import java.io.IOException;
 import java.net.InetSocketAddress;
 import java.time.Duration;
 import java.util.ArrayDeque;
@@ -25,12 +29,12 @@ import org.slf4j.LoggerFactory;
 /**
  * A node running from a {@link Deployment}. {@link #start} opens the components' resources
  * (through their factories), builds the node with every component, starts it, then its Notifier,
- * its network, its management service and its status service ({@code etherware.status[node=<id>]},
- * which the control tool asks); each Notifier subscription starts as soon as its target
- * resolves (at once for a component of this node, when a peer announces it otherwise), on a thread
- * of its own that waits for them. {@link #close} stops them in the reverse order: subscriptions
- * and Notifier, network, node (with the management service and components), then the factories'
- * resources.
+ * its network, its management service, its status service ({@code etherware.status[node=<id>]},
+ * which the control tool asks) and its live view ({@link NodeView}, if the file has a
+ * {@code <view>}); each Notifier subscription starts as soon as its target resolves (at once for a
+ * component of this node, when a peer announces it otherwise), on a thread of its own that waits
+ * for them. {@link #close} stops them in the reverse order: the view, subscriptions and Notifier,
+ * network, node (with the management service and components), then the factories' resources.
  *
  * <p>Thread-safe: {@link #close} may be called from any thread (a shutdown hook), more than once.
  */
@@ -45,16 +49,20 @@ public final class DeployedNode implements AutoCloseable {
     private final EtherwareNode node;
     private final Notifier notifier;
     private final NetworkMessenger network;
+    private final LiveSignals signals;
+    private final NodeView view;
     private final Thread subscriber;
     private volatile boolean closing;
 
     private DeployedNode(Deployment deployment, Deque<AutoCloseable> resources, EtherwareNode node,
-            Notifier notifier, NetworkMessenger network) {
+            Notifier notifier, NetworkMessenger network, LiveSignals signals, NodeView view) {
         this.deployment = deployment;
         this.resources = resources;
         this.node = node;
         this.notifier = notifier;
         this.network = network;
+        this.signals = signals;
+        this.view = view;
         List<Subscription> subscriptions = deployment.notifier().map(Deployment.NotifierPlan::subscriptions)
                 .orElse(List.of());
         subscriber = subscriptions.isEmpty() ? null : Thread.ofPlatform().daemon()
@@ -68,13 +76,14 @@ public final class DeployedNode implements AutoCloseable {
      * @param deployment the checked deployment
      * @return the running node
      * @throws DeploymentException if a component's factory refuses its settings or cannot open what
-     *                             it needs, or the node, its network or management service cannot
-     *                             start; whatever was started is closed again first
+     *                             it needs, or the node, its network, management service or view
+     *                             cannot start; whatever was started is closed again first
      */
     public static DeployedNode start(Deployment deployment) throws DeploymentException {
         Deque<AutoCloseable> resources = new ArrayDeque<>();
         EtherwareNode node = null;
         NetworkMessenger network = null;
+        var signals = new LiveSignals();
         try {
             var types = new ContentsTypes();
             for (Deployment.ComponentPlan plan : deployment.components()) {
@@ -82,7 +91,7 @@ public final class DeployedNode implements AutoCloseable {
             }
             var suppliers = new ArrayList<Supplier<? extends Component>>();
             for (Deployment.ComponentPlan plan : deployment.components()) {
-                suppliers.add(create(deployment, plan, resources));
+                suppliers.add(create(deployment, plan, resources, signals));
             }
             node = EtherwareNode.builder().nodeId(deployment.nodeId()).scheduler(deployment.scheduler().factory())
                     .contentsTypes(types).build();
@@ -99,13 +108,16 @@ public final class DeployedNode implements AutoCloseable {
             NetworkMessenger messenger = network;
             deployment.management().ifPresent(config -> ManagementService.install(started, config, messenger));
             StatusService.install(node, network);
-            var deployed = new DeployedNode(deployment, resources, node, notifier, network);
+            NodeView view = deployment.view().isPresent()
+                    ? startView(deployment, deployment.view().get(), node, network, signals) : null;
+            var deployed = new DeployedNode(deployment, resources, node, notifier, network, signals, view);
             if (deployed.subscriber != null) {
                 deployed.subscriber.start();
             }
-            LOG.info("node {} started from {}: scheduler {}, {} component(s){}", deployment.nodeId(),
+            LOG.info("node {} started from {}: scheduler {}, {} component(s){}{}", deployment.nodeId(),
                     deployment.file(), deployment.scheduler().description(), deployment.components().size(),
-                    network != null ? ", listening on " + network.localAddress() : "");
+                    network != null ? ", listening on " + network.localAddress() : "",
+                    view != null ? ", view on " + view.url() : "");
             return deployed;
         } catch (DeploymentException | RuntimeException | Error e) {
             closeQuietly(network, "network");
@@ -142,8 +154,20 @@ public final class DeployedNode implements AutoCloseable {
         }
     }
 
+    private static NodeView startView(Deployment deployment, Deployment.ViewPlan plan, EtherwareNode node,
+            NetworkMessenger network, LiveSignals signals) throws DeploymentException {
+        try {
+            return NodeView.start(plan.config(), () -> Status.snapshot(node, network), signals);
+        } catch (IOException e) {
+            var listen = plan.config().listen();
+            throw new DeploymentException(deployment.file(), plan.line(), 0, "<view listen=\""
+                    + listen.getAddress().getHostAddress() + ":" + listen.getPort() + "\">: cannot listen there ("
+                    + e + "); choose a free port, or 0 for any", e);
+        }
+    }
+
     private static Supplier<? extends Component> create(Deployment deployment, Deployment.ComponentPlan plan,
-            Deque<AutoCloseable> resources) throws DeploymentException {
+            Deque<AutoCloseable> resources, LiveSignals signals) throws DeploymentException {
         Supplier<? extends Component> supplier;
         try {
             supplier = plan.factory().create(plan.settings(), new ComponentFactory.Resources() {
@@ -151,6 +175,11 @@ public final class DeployedNode implements AutoCloseable {
                 public <T extends AutoCloseable> T closeAfterNode(T resource) {
                     resources.push(resource);
                     return resource;
+                }
+
+                @Override
+                public LiveSignals signals() {
+                    return signals;
                 }
             });
         } catch (RuntimeException | LinkageError e) {
@@ -200,8 +229,31 @@ public final class DeployedNode implements AutoCloseable {
         return network().map(NetworkMessenger::localAddress);
     }
 
+    /** {@return the node's live signals, which its factories publish into} */
+    public LiveSignals signals() {
+        return signals;
+    }
+
     /**
-     * Stops the node in order: subscriptions and Notifier, network, node, the factories'
+     * Where the live view listens, if the deployment has a {@code <view>}.
+     *
+     * @return the bound address (the real port where the file said 0)
+     */
+    public Optional<InetSocketAddress> viewAddress() {
+        return Optional.ofNullable(view).map(NodeView::address);
+    }
+
+    /**
+     * The live view's page, if the deployment has a {@code <view>}.
+     *
+     * @return e.g. {@code http://127.0.0.1:8080/}
+     */
+    public Optional<String> viewUrl() {
+        return Optional.ofNullable(view).map(NodeView::url);
+    }
+
+    /**
+     * Stops the node in order: the view, subscriptions and Notifier, network, node, the factories'
      * resources. Idempotent; a step that fails is logged and the next still runs.
      */
     @Override
@@ -211,6 +263,7 @@ public final class DeployedNode implements AutoCloseable {
         }
         closing = true;
         LOG.info("node {} closing", deployment.nodeId());
+        closeQuietly(view, "view");
         if (subscriber != null) {
             subscriber.interrupt();
             try {

@@ -2,6 +2,7 @@ package io.etherware.deploy;
 
 import io.etherware.core.message.Profile;
 import io.etherware.core.scheduler.Scheduler;
+import io.etherware.deploy.view.ViewConfig;
 import io.etherware.services.management.ManagementConfig;
 import io.etherware.services.network.NetworkConfig;
 import io.etherware.services.notifier.NotifierConfig;
@@ -25,10 +26,11 @@ import java.util.function.Supplier;
  * @param components the components, in file order
  * @param network    the network configuration, if the file has a {@code <network>}
  * @param management the management service's configuration, if the file has a {@code <management>}
+ * @param view       the live view, if the file has a {@code <view>}
  */
 public record Deployment(Path file, String nodeId, SchedulerPlan scheduler, Optional<NotifierPlan> notifier,
                          List<ComponentPlan> components, Optional<NetworkConfig> network,
-                         Optional<ManagementConfig> management) {
+                         Optional<ManagementConfig> management, Optional<ViewPlan> view) {
 
     /** Checks that nothing is null and copies the list. */
     public Deployment {
@@ -39,6 +41,23 @@ public record Deployment(Path file, String nodeId, SchedulerPlan scheduler, Opti
         components = List.copyOf(components);
         Objects.requireNonNull(network, "network");
         Objects.requireNonNull(management, "management");
+        Objects.requireNonNull(view, "view");
+    }
+
+    /**
+     * A deployment without a live view.
+     *
+     * @param file       the file it was read from
+     * @param nodeId     the node's id
+     * @param scheduler  the node's scheduler
+     * @param notifier   the Notifier and its subscriptions, if any
+     * @param components the components, in file order
+     * @param network    the network configuration, if any
+     * @param management the management service's configuration, if any
+     */
+    public Deployment(Path file, String nodeId, SchedulerPlan scheduler, Optional<NotifierPlan> notifier,
+            List<ComponentPlan> components, Optional<NetworkConfig> network, Optional<ManagementConfig> management) {
+        this(file, nodeId, scheduler, notifier, components, network, management, Optional.empty());
     }
 
     /**
@@ -77,5 +96,19 @@ public record Deployment(Path file, String nodeId, SchedulerPlan scheduler, Opti
      */
     public record ComponentPlan(Profile profile, String className, ComponentFactory factory, Settings settings,
                                 int line) {
+    }
+
+    /**
+     * The {@code <view>}: the node's page and metrics endpoint.
+     *
+     * @param config where it listens
+     * @param line   the element's line, for errors found at start (the port is taken)
+     */
+    public record ViewPlan(ViewConfig config, int line) {
+
+        /** Checks the config. */
+        public ViewPlan {
+            Objects.requireNonNull(config, "config");
+        }
     }
 }

@@ -104,6 +104,8 @@ public final class DeploymentReader {
                         : Optional.empty(),
                 root.child("management").isPresent()
                         ? Optional.of(sections.management(root.child("management").orElseThrow()))
+                        : Optional.empty(),
+                root.child("view").isPresent() ? Optional.of(sections.view(root.child("view").orElseThrow()))
                         : Optional.empty());
     }
 

@@ -21,7 +21,8 @@ import picocli.CommandLine.Spec;
  * is asked to end (SIGTERM, SIGINT), then closes it in order ({@link DeployedNode#close}). A bad
  * file is reported on standard error, naming the line, element and fix, and nothing starts (exit
  * status 2). Prints {@code READY} on standard output once the node runs (after a line saying
- * where it listens), for scripts and process supervisors that wait for it.
+ * where it listens, and one with its view's address if it has a {@code <view>}), for scripts and
+ * process supervisors that wait for it.
  *
  * <p>Run by picocli on the main thread, which then waits for the node to close.
  */
@@ -87,7 +88,8 @@ public final class Launcher implements Callable<Integer> {
                 out.println("OK " + file + ": node " + deployment.nodeId() + ", scheduler "
                         + deployment.scheduler().description() + ", " + deployment.components().size()
                         + " component(s)" + deployment.network().map(n -> ", listening on "
-                        + hostPort(n.listenAddress()) + ", " + n.peers().size() + " peer(s)").orElse(", no network"));
+                        + hostPort(n.listenAddress()) + ", " + n.peers().size() + " peer(s)").orElse(", no network")
+                        + deployment.view().map(v -> ", view on " + hostPort(v.config().listen())).orElse(""));
                 out.flush();
                 return 0;
             }
@@ -108,6 +110,7 @@ public final class Launcher implements Callable<Integer> {
         }
         out.println("node " + deployment.nodeId() + " running" + deployed.listenAddress()
                 .map(a -> ", listening on " + hostPort(a)).orElse(""));
+        deployed.viewUrl().ifPresent(url -> out.println("view on " + url));
         out.println(READY);
         out.flush();
         // Until the node closes: from the shutdown hook, or by itself (an escalation that stopped it).

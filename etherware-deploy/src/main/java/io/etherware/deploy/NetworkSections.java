@@ -1,6 +1,7 @@
 package io.etherware.deploy;
 
 import io.etherware.deploy.internal.XmlElement;
+import io.etherware.deploy.view.ViewConfig;
 import io.etherware.services.management.AccessRule;
 import io.etherware.services.management.ManagementConfig;
 import io.etherware.services.network.ConnectionFactory;
@@ -18,10 +19,10 @@ import java.util.EnumSet;
 import java.util.Set;
 
 /**
- * The {@code <network>} and {@code <management>} sections of a deployment, as configurations:
- * addresses resolved, TLS key stores and signer certificates loaded (relative paths against the
- * deployment file's directory), every value checked by the configuration's own rules. Used by one
- * {@link DeploymentReader#read} call.
+ * The {@code <network>}, {@code <management>} and {@code <view>} sections of a deployment, as
+ * configurations: addresses resolved, TLS key stores and signer certificates loaded (relative
+ * paths against the deployment file's directory), every value checked by the configuration's own
+ * rules. Used by one {@link DeploymentReader#read} call.
  */
 final class NetworkSections {
 
@@ -111,6 +112,17 @@ final class NetworkSections {
             return builder.build();
         } catch (IllegalArgumentException e) {
             throw at.problem(element, "<management>: " + e.getMessage());
+        }
+    }
+
+    Deployment.ViewPlan view(XmlElement element) throws DeploymentException {
+        String listen = element.attributes().get("listen");
+        boolean allowRemote = Boolean.parseBoolean(element.attribute("allowRemote").orElse("false"));
+        try {
+            return new Deployment.ViewPlan(new ViewConfig(address(element, "listen", listen), allowRemote),
+                    element.line());
+        } catch (IllegalArgumentException e) {
+            throw at.problem(element, "<view listen=\"" + listen + "\">: " + e.getMessage());
         }
     }
 

@@ -58,6 +58,7 @@ class DeploymentReaderTest {
                   <management allowUnauthenticatedLinks="true" settleWait="250ms">
                     <allow node="node-b" operations="MIGRATE UPGRADE" components="counter"/>
                   </management>
+                  <view listen="127.0.0.1:0"/>
                 </node>
                 """.formatted(COUNTER, FACTORY));
 
@@ -82,6 +83,9 @@ class DeploymentReaderTest {
         var management = deployment.management().orElseThrow();
         assertEquals(1, management.accessList().size());
         assertEquals(250_000_000L, management.settleWaitNs());
+        var view = deployment.view().orElseThrow();
+        assertEquals(0, view.config().listen().getPort());
+        assertEquals(22, view.line());
     }
 
     @Test
@@ -97,6 +101,19 @@ class DeploymentReaderTest {
         assertTrue(deployment.notifier().isEmpty());
         assertTrue(deployment.network().isEmpty());
         assertTrue(deployment.management().isEmpty());
+        assertTrue(deployment.view().isEmpty());
+    }
+
+    @Test
+    void shouldDefaultTheViewToLoopbackPort8080() throws Exception {
+        Path file = write("view.xml", """
+                <node id="v"><component profile="counter" class="%s"/><view/></node>
+                """.formatted(COUNTER));
+
+        var view = new DeploymentReader().read(file).view().orElseThrow().config();
+
+        assertTrue(view.listen().getAddress().isLoopbackAddress(), view::toString);
+        assertEquals(8080, view.listen().getPort());
     }
 
     @Test
@@ -202,6 +219,9 @@ class DeploymentReaderTest {
                 Arguments.of("an unknown operation", "<node id=\"n\">\n<management>\n<allow node=\"b\""
                         + " operations=\"DELETE\" components=\"*\"/>\n</management>\n</node>", 3,
                         new String[] {"DELETE"}),
+                Arguments.of("a view beyond loopback", "<node id=\"n\">\n<component profile=\"a\" class=\""
+                        + COUNTER + "\"/>\n<view listen=\"0.0.0.0:8080\"/>\n</node>", 3,
+                        new String[] {"<view listen=\"0.0.0.0:8080\">", "beyond loopback", "allowRemote=\"true\""}),
                 Arguments.of("two subscriptions with one name", "<node id=\"n\">\n<notifier>\n<subscription"
                         + " name=\"s\" target=\"a\" period=\"1ms\"/>\n<subscription name=\"s\" target=\"b\""
                         + " period=\"1ms\"/>\n</notifier>\n</node>", 4, new String[] {"given twice"}));
