@@ -45,6 +45,9 @@ class DeploymentFilesTest {
                 .map(Deployment.ComponentPlan::profile).toList());
         assertEquals(7500, node2.network().orElseThrow().peers().getFirst().getPort());
         assertTrue(node2.management().orElseThrow().accessList().getFirst().node().equals("node1"));
+        var view = node2.view().orElseThrow().config();
+        assertTrue(view.listen().getAddress().isLoopbackAddress() && !view.allowRemote(), view::toString);
+        assertEquals(8080, view.listen().getPort());
     }
 
     @Test

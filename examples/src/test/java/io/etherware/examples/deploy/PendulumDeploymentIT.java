@@ -46,7 +46,7 @@ class PendulumDeploymentIT {
                 addressFile.toString(), "deploy/pendulum-node1.xml"), log1, 60)) {
             String plant = Files.readString(addressFile).strip();
             try (NodeProcess node2 = NodeProcess.start(List.of("node", "-P", "listen=127.0.0.1:0", "-P",
-                    "plant=" + plant, "deploy/pendulum-node2.xml"), log2, 60)) {
+                    "plant=" + plant, "-P", "view=127.0.0.1:0", "deploy/pendulum-node2.xml"), log2, 60)) {
                 // The board starts at the controller's first request; wait for RUN_S of its reports.
                 long giveUpNs = System.nanoTime() + TimeUnit.SECONDS.toNanos(60);
                 while (reportedSeconds(node1.linesSoFar()) < RUN_S) {
@@ -76,6 +76,9 @@ class PendulumDeploymentIT {
             assertFalse(text.contains("closed by itself"), () -> log + ":\n" + text);
         }
         System.out.println("node 2: " + String.join(" | ", said2));
+        // Node 2 runs the controller and its live view, on loopback, on the free port it was given.
+        assertTrue(said2.stream().anyMatch(line -> line.matches("view on http://127\\.0\\.0\\.1:[1-9][0-9]*/")),
+                () -> "node 2 said " + said2);
     }
 
     private static double reportedSeconds(List<String> lines) {
