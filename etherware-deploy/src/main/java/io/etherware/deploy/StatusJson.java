@@ -79,7 +79,9 @@ public final class StatusJson {
     }
 
     /**
-     * {@code text} as a JSON string literal: quotes, backslashes and control characters escaped.
+     * {@code text} as a JSON string literal: quotes, backslashes and control characters escaped, and
+     * {@code <}, {@code >} and {@code &} too, so that no value can close a {@code <script>} or open a
+     * tag in a page it is pasted into.
      *
      * @param text the text, or null
      * @return the literal, or {@code null}
@@ -98,7 +100,7 @@ public final class StatusJson {
                 case '\r' -> out.append("\\r");
                 case '\t' -> out.append("\\t");
                 default -> {
-                    if (ch < 0x20 || ch == 0x2028 || ch == 0x2029) {
+                    if (ch < 0x20 || ch == 0x2028 || ch == 0x2029 || ch == '<' || ch == '>' || ch == '&') {
                         out.append(String.format("\\u%04x", (int) ch));
                     } else {
                         out.append(ch);
