@@ -5,6 +5,7 @@ import io.etherware.core.component.RequestFailedException;
 import io.etherware.core.component.Shell;
 import io.etherware.core.kernel.ComponentHost;
 import io.etherware.core.kernel.RemoteRoute;
+import io.etherware.core.kernel.RouteMarker;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
 import io.etherware.services.management.Management;
@@ -232,7 +233,7 @@ public final class MigrationSource {
 
         @Override
         public void deliver(Message message) {
-            if (!sealed) {
+            if (!sealed && !(message.contents() instanceof RouteMarker)) {
                 synchronized (this) {
                     if (!sealed) {
                         to.deliver(message.withProfile(arrival));
@@ -241,7 +242,9 @@ public final class MigrationSource {
                     }
                 }
             }
-            // The exact profile: a query that resolved to it here might not resolve alike there.
+            // The exact profile: a query that resolved to it here might not resolve alike there. A
+            // route marker goes there too, uncounted: the target answers it and never queues it, and
+            // what its sender sent before it went this way first (see RouteMarker).
             to.deliver(message.profile().equals(profile) ? message : message.withProfile(profile));
         }
 
