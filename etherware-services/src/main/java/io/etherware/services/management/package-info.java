@@ -145,7 +145,10 @@
  * held messages on once the route leads to that node (NETWORK-PROTOCOL.md, "Route moves"), so they
  * come after the earlier ones there (penned, if the component still waits for its admission). A
  * marker unanswered within 500 ms (the source died) ends the wait, counted and logged; only a
- * message still on its way through the dead source can then come late. Order is per sender and
+ * message still on its way through the dead source can then come late. One narrower window remains:
+ * before it sends the marker the sender waits at most 10 ms for its threads already inside the old
+ * route to hand their messages over; a sending thread preempted longer than that between choosing
+ * the old node and queueing its message can still be overtaken. Order is per sender and
  * urgency, as everywhere in the kernel, for senders on the source, on the target and on any third
  * node (tested with a third node streaming through twenty moves). A message forwarded after its
  * stream broke for good is reported undeliverable to its sender, as any message on that link. Each
