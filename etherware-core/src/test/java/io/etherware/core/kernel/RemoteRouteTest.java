@@ -155,20 +155,4 @@ class RemoteRouteTest {
         nodeA.remove(ECHO);
         assertEquals(List.of("echo[node=b]: Remote -> Local", "echo[node=b]: Local -> none"), List.copyOf(changes));
     }
-
-    @Test
-    void shouldAnswerARouteMarkerWhereItReachesTheComponentAndNeverGiveItToTheComponent() throws Exception {
-        var seen = new LinkedBlockingQueue<Message>();
-        nodeB.add(ECHO, () -> (message, context) -> seen.add(message));
-        nodeB.start();
-        nodeA.start();
-        // Through the route, as a moving route's marker goes; the answer is a reply to it.
-        Message answer = nodeA.request(ECHO, new RouteMarker(false)).get(30, TimeUnit.SECONDS);
-
-        assertEquals(new RouteMarker(true), answer.contents());
-        assertEquals(nodeB.profile(), answer.sender(), "answered by the node that hosts the component");
-        nodeA.send(ECHO, new Text("after"));
-        assertEquals(new Text("after"), seen.poll(30, TimeUnit.SECONDS).contents(), "the marker never reached it");
-        assertTrue(seen.isEmpty());
-    }
 }

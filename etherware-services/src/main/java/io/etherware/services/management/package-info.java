@@ -69,8 +69,7 @@
  *   <li><b>transfer</b>: the snapshot travels as XML in the INSTALL step; the target restores it
  *       and registers the component <em>held</em> under its profile and under an <em>arrival</em>
  *       profile unique to this migration ({@code etherware.arrival[id=...]},
- *       {@link io.etherware.core.kernel.ComponentHost#addHeld}). The target now announces the profile;
- *       the other nodes route it to the source until the source withdraws it.</li>
+ *       {@link io.etherware.core.kernel.ComponentHost#addHeld}). The target now announces the profile.</li>
  *   <li><b>relocate</b>: the source stops the component and forwards, to the arrival profile, the
  *       kept messages, then those still queued for it at its dispatchers, then switches its
  *       registry to the route ({@link io.etherware.core.kernel.ComponentHost#relocateAsync}).</li>
@@ -128,33 +127,12 @@
  * through the source before: the source has them,
  * and forwards them, before it switches. The release waits for the forwarded count, because the
  * HANDOVER, sent at HIGH criticality, may overtake less critical forwarded messages in a
- * backlogged queue.
- *
- * <p>A sender on a third node routes the profile to the source until the source withdraws it
- * (after its switch), then to the target; its messages sent before that may still be on their way
- * to the source, or queued there, and the source forwards them, so one it then sends the target
- * directly could overtake them. Its network layer therefore holds its messages for the profile
- * when the route moves, and sends a route marker
- * ({@link io.etherware.core.kernel.RouteMarker}) to the profile through the source, at NONE
- * criticality: after every message it queued for the source before. Every node forwards the marker
- * as any message to the profile, so it stays behind those messages (the source's relocation
- * forwards it behind the ones it holds or queues, and sends it to the profile, uncounted); the node
- * where it reaches the component (hosting it, not relocating it) answers it, and has then queued
- * every earlier message of that sender for the component there, or counted it for its admission, or
- * handed it to a relocation that carries it ahead of anything that comes later. The sender sends its
- * held messages on once the route leads to that node (NETWORK-PROTOCOL.md, "Route moves"), so they
- * come after the earlier ones there (penned, if the component still waits for its admission). A
- * marker unanswered within 500 ms (the source died) ends the wait, counted and logged; only a
- * message still on its way through the dead source can then come late. One narrower window remains:
- * before it sends the marker the sender waits at most 10 ms for its threads already inside the old
- * route to hand their messages over; a sending thread preempted longer than that between choosing
- * the old node and queueing its message can still be overtaken. Order is per sender and
- * urgency, as everywhere in the kernel, for senders on the source, on the target and on any third
- * node (tested with a third node streaming through twenty moves). A message forwarded after its
- * stream broke for good is reported undeliverable to its sender, as any message on that link. Each
- * move a message rides along (kept or queued at a component that moves on before handling it) is a
- * relay: one held through more than {@code maxHops} (4) moves is refused as undeliverable, which
- * happens only when migrations come faster than the component drains its queue. A component that always has a request in flight (it asks
+ * backlogged queue. Order is per sender and
+ * urgency, as everywhere in the kernel. Known limit: a third node that sent to the source just
+ * before learning of the move (its message crossing the source's announcement) may see that message
+ * handled after one it then sent to the target directly; closing it needs per-sender sequence
+ * numbers. A message forwarded after its stream broke for good is reported undeliverable to its
+ * sender, as any message on that link. A component that always has a request in flight (it asks
  * again from each reply) is never quiescent: it moves after the settle wait, and the reply then in
  * flight is lost to it.
  *

@@ -29,18 +29,11 @@ import java.util.Map;
  *                             profile, or one the {@link AnnouncePolicy} does not allow
  * @param inboundPauses        times this node stopped reading from a peer because its messages
  *                             held here reached {@link NetworkConfig#maxInboundBytesPerPeer()}
- * @param routeMoves           times a route to a profile moved from one connected node to another
- *                             (its component migrated) while this node sent through it: its
- *                             messages waited for a route marker through the old node
- *                             (NETWORK-PROTOCOL.md, "Route moves")
- * @param routeMovesUnconfirmed of those, the moves whose marker was not answered in time (or
- *                             could not be sent): their messages went on without the confirmation
  */
 public record NetworkStats(String nodeId, int connectedPeers, long messagesSent, long messagesResent,
                            long messagesReceived, long duplicatesDropped, long overflowDropped, long undeliverable,
                            long connectionsOpened, long handshakesFailed, Map<CloseReason, Long> closes,
-                           long announcementsRefused, long inboundPauses, long routeMoves,
-                           long routeMovesUnconfirmed) {
+                           long announcementsRefused, long inboundPauses) {
 
     /**
      * Copies {@code closes}.

@@ -3,15 +3,12 @@ package io.etherware.core.kernel.internal;
 import io.etherware.core.kernel.Kernel;
 import io.etherware.core.kernel.RemoteRoute;
 import io.etherware.core.kernel.RequestFailed;
-import io.etherware.core.kernel.RouteMarker;
 import io.etherware.core.kernel.Undeliverable;
 import io.etherware.core.message.Contents;
-import io.etherware.core.message.Criticality;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageId;
 import io.etherware.core.message.Origin;
 import io.etherware.core.message.Profile;
-import io.etherware.core.message.QoS;
 import io.etherware.core.message.Tick;
 import io.etherware.core.scheduler.Job;
 import io.etherware.core.scheduler.Scheduler;
@@ -84,12 +81,6 @@ final class Delivery {
 
     /** Makes {@code message} a job of {@code shell} and submits it (or forwards it, if it relocated). */
     void enqueue(Message message, LocalShell shell) {
-        if (message.contents() instanceof RouteMarker && !shell.isRelocating()) {
-            // The marker reached the component: whatever its sender sent before it is queued here
-            // already, or counted for this arrival's admission (see RouteMarker).
-            answerMarker(message);
-            return;
-        }
         long nowNs = clock.nanoTime();
         long releaseNs = nowNs;
         // A local Tick is released at its scheduled time, so start latency counts from there.
@@ -159,16 +150,6 @@ final class Delivery {
             }
             undeliverable(message, reason);
         }
-    }
-
-    /** Tells the sender of a route marker that it reached the component here (never the component). */
-    void answerMarker(Message marker) {
-        if (marker.sender() == null || ((RouteMarker) marker.contents()).reached()) {
-            return;
-        }
-        // HIGH: the sender holds its messages for the profile until it hears this.
-        send.accept(new Message(marker.sender(), nodeProfile, clock.epochNanos(), QoS.of(Criticality.HIGH),
-                new RouteMarker(true), newMessageId.get(), marker.messageId()));
     }
 
     /** Hands a request's outcome to its requester. */

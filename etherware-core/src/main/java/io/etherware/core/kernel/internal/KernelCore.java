@@ -13,7 +13,6 @@ import io.etherware.core.kernel.NodeStats;
 import io.etherware.core.kernel.ProfileRegistry;
 import io.etherware.core.kernel.RemoteRoute;
 import io.etherware.core.kernel.RequestFailed;
-import io.etherware.core.kernel.RouteMarker;
 import io.etherware.core.kernel.SupervisionPolicy;
 import io.etherware.core.kernel.SwapTimings;
 import io.etherware.core.kernel.Undeliverable;
@@ -98,14 +97,10 @@ public final class KernelCore implements ComponentHost, JobRunner {
         registerContents(config.contentsTypes());
     }
 
-    /**
-     * Registers the kernel's notices ({@code undeliverable}, {@code request-failed}) and its route
-     * marker ({@code route-marker}) in {@code types}.
-     */
+    /** Registers the kernel's notices ({@code undeliverable}, {@code request-failed}) in {@code types}. */
     public static void registerContents(ContentsTypes types) {
         types.register("undeliverable", Undeliverable.class);
         types.register("request-failed", RequestFailed.class);
-        types.register("route-marker", RouteMarker.class);
     }
 
     // ---------------------------------------------------------------- Kernel

@@ -4,7 +4,6 @@ import io.etherware.core.component.Component;
 import io.etherware.core.component.ComponentState;
 import io.etherware.core.component.Shell;
 import io.etherware.core.kernel.Endpoint;
-import io.etherware.core.kernel.RouteMarker;
 import io.etherware.core.kernel.SupervisionPolicy;
 import io.etherware.core.kernel.SwapTimings;
 import io.etherware.core.message.Message;
@@ -145,11 +144,6 @@ public final class LocalShell implements Shell {
 
     boolean isRemoved() {
         return removed;
-    }
-
-    /** Whether a relocation has begun: its messages are forwarded from now on, in order. */
-    boolean isRelocating() {
-        return forwardTo != null;
     }
 
     // ---------------------------------------------------------------- the gate
@@ -375,10 +369,6 @@ public final class LocalShell implements Shell {
     }
 
     private void handle(Message message, long nowNs) {
-        if (message.contents() instanceof RouteMarker && forwardTo == null) {
-            delivery.answerMarker(message); // the kernel's, never the component's
-            return;
-        }
         if (logic.state() != State.RUNNING) {
             Endpoint.Remote to = forwardTo;
             if (to != null) {

@@ -5,7 +5,6 @@ import io.etherware.core.component.RequestFailedException;
 import io.etherware.core.component.Shell;
 import io.etherware.core.kernel.ComponentHost;
 import io.etherware.core.kernel.RemoteRoute;
-import io.etherware.core.kernel.RouteMarker;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
 import io.etherware.services.management.Management;
@@ -233,7 +232,7 @@ public final class MigrationSource {
 
         @Override
         public void deliver(Message message) {
-            if (!sealed && !(message.contents() instanceof RouteMarker)) {
+            if (!sealed) {
                 synchronized (this) {
                     if (!sealed) {
                         to.deliver(message.withProfile(arrival));
@@ -242,9 +241,7 @@ public final class MigrationSource {
                     }
                 }
             }
-            // The exact profile: a query that resolved to it here might not resolve alike there. A
-            // route marker goes there too, uncounted: the target answers it and never queues it, and
-            // what its sender sent before it went this way first (see RouteMarker).
+            // The exact profile: a query that resolved to it here might not resolve alike there.
             to.deliver(message.profile().equals(profile) ? message : message.withProfile(profile));
         }
 

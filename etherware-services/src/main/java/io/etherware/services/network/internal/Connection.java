@@ -1,6 +1,5 @@
 package io.etherware.services.network.internal;
 
-import io.etherware.core.kernel.RouteMarker;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageFormatException;
 import io.etherware.core.message.Origin;
@@ -427,11 +426,6 @@ final class Connection implements Runnable {
 
     /** Hands a message from the peer, its origin set, to the kernel (the reader thread). */
     private void deliverLocally(Message message) {
-        if (message.contents() instanceof RouteMarker marker && marker.reached()) {
-            context.routes().markerReached(message); // ends a route's move here; not the kernel's
-            context.counters().received.increment();
-            return;
-        }
         try {
             context.kernel().send(message);
             context.counters().received.increment();

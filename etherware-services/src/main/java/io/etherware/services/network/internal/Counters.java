@@ -18,8 +18,6 @@ final class Counters {
     final LongAdder handshakesFailed = new LongAdder();
     final LongAdder announcementsRefused = new LongAdder();
     final LongAdder inboundPauses = new LongAdder();
-    final LongAdder routeMoves = new LongAdder();
-    final LongAdder routeMovesUnconfirmed = new LongAdder();
     final java.util.concurrent.atomic.AtomicLong handshakesEvicted = new java.util.concurrent.atomic.AtomicLong();
     private final LongAdder[] closes = new LongAdder[CloseReason.values().length];
 
@@ -43,6 +41,6 @@ final class Counters {
         }
         return new NetworkStats(nodeId, connectedPeers, sent.sum(), resent.sum(), received.sum(), duplicates.sum(),
                 overflowDropped.sum(), undeliverable.sum(), opened.sum(), handshakesFailed.sum(), byReason,
-                announcementsRefused.sum(), inboundPauses.sum(), routeMoves.sum(), routeMovesUnconfirmed.sum());
+                announcementsRefused.sum(), inboundPauses.sum());
     }
 }

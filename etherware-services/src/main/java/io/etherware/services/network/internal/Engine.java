@@ -77,21 +77,19 @@ public final class Engine {
         this.nodeId = kernel.nodeId();
         this.incarnation = NetworkContext.nonZero(new SecureRandom().nextLong());
         this.networkTime = new NetworkTime(kernel.clock(), config.timeWindowSize(), NetworkTime.DEFAULT_MIN_DRIFT_SPAN);
+        this.routes = new RouteTable(kernel.registry(), config.announcePolicy(), counters.announcementsRefused);
         this.control = new ScheduledThreadPoolExecutor(1, task -> {
             Thread thread = new Thread(task, "etherware-net-" + nodeId + "-control");
             thread.setDaemon(true);
             return thread;
         });
-        var losses = new Losses(kernel, counters);
-        this.routes = new RouteTable(kernel, config.announcePolicy(), counters, control, losses,
-                config.queueCapacity());
         this.announcer = new Announcer(kernel, peers.values(), toReconcile);
         var lanes = new ArrayList<IoThreads>();
         for (int lane = 0; lane < config.lanes(); lane++) {
             lanes.add(IoThreads.of(kernel, config, lane));
         }
         this.context = new NetworkContext(nodeId, incarnation, kernel, config, counters, networkTime,
-                losses, lanes, control, config.codecFor(kernel), routes);
+                new Losses(kernel, counters), lanes, control, config.codecFor(kernel));
         this.admission = new Admission(context);
     }
 

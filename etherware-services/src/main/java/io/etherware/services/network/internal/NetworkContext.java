@@ -24,11 +24,10 @@ import java.util.concurrent.ThreadLocalRandom;
  * @param lanes       each lane's thread policy and CPUs, by lane
  * @param control     the control thread, for work a caller must not wait for
  * @param codec       encodes and decodes the messages ({@link NetworkConfig#codecFor})
- * @param routes      the routes to other nodes' profiles, told of the answers to their route markers
  */
 record NetworkContext(String nodeId, long incarnation, Kernel kernel, NetworkConfig config, Counters counters,
                       NetworkTime networkTime, Losses losses, List<IoThreads> lanes, Executor control,
-                      io.etherware.core.codec.MessageCodec codec, RouteTable routes) {
+                      io.etherware.core.codec.MessageCodec codec) {
 
     NetworkContext {
         lanes = List.copyOf(lanes);

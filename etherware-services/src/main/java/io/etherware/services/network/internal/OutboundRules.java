@@ -28,8 +28,7 @@ final class OutboundRules {
         int hops = message.origin() == null ? 0 : message.origin().hops() + 1;
         if (hops > context.config().maxHops()) {
             throw new IllegalStateException("message " + message.messageId() + " was already relayed " + (hops - 1)
-                    + " times (maxHops=" + context.config().maxHops() + "): the nodes' routes disagree, or it followed a"
-                    + " migrating component through that many moves without being handled");
+                    + " times (maxHops=" + context.config().maxHops() + "): the nodes' routes disagree");
         }
         return hops;
     }
