@@ -1,13 +1,15 @@
 package io.etherware.services.network.internal;
 
+import io.etherware.core.message.Criticality;
 import io.etherware.core.message.Message;
+import io.etherware.core.message.MessageFormatException;
 import io.etherware.services.network.CloseReason;
 import java.io.IOException;
 import java.util.ArrayList;
 import java.util.List;
+import java.util.concurrent.TimeUnit;
 import java.util.concurrent.locks.Condition;
 import java.util.concurrent.locks.ReentrantLock;
-import java.util.function.Supplier;
 
 /**
  * One lane to another node, across connections: the messages waiting for it (by criticality),
@@ -22,20 +24,14 @@ import java.util.function.Supplier;
  * does not know the stream (it restarted), the unacknowledged messages are reported to their
  * senders as undeliverable and numbering starts over.
  *
- * <p>Parts. The link owns the connection in use and the lock, and coordinates its parts, each
- * given what it needs when the link is made: {@link OutboundRules} (hops, encoding and overflow,
- * on the sender's thread), {@link Outbox} (the waiting messages and what a writer's turn takes),
- * {@link OutboundStream} and {@link InboundStream} (the two streams), {@link Resumption} (how they
- * carry on over a new connection), {@link LaneOrder} (the NONE ordering across lanes),
- * {@link OutputToken} (who writes: the writer thread or a sender directly) and {@link LaneLife}
- * (whether the lane takes messages).
- *
- * <p>Locking: {@link #lock} guards the outbound state (the parts above) and the connections'
- * writer requests; the {@link #inbound} stream's monitor guards it and is taken first when both
- * are needed. The parts take no lock of their own ({@link OutputToken#release} takes this one).
- * Nothing calls the kernel while holding {@link #lock}.
+ * <p>Locking: {@link #lock} guards the outbound state and the connections' writer requests;
+ * the {@link #inbound} stream's monitor guards it and is taken first when both are needed. Nothing
+ * calls the kernel while holding {@link #lock}.
  */
 final class Link {
+
+    /** How often a writer looks again at a NONE message held for lane 0 (see {@link Generations}). */
+    private static final long BARRIER_POLL_NS = TimeUnit.MILLISECONDS.toNanos(1);
 
     final String nodeId;
     /** Which lane of the peer this is. */
@@ -47,36 +43,43 @@ final class Link {
     private final InboundStream inbound = new InboundStream();
 
     private final NetworkContext context;
-    private final OutboundRules rules;
+    /** Lane 0's link, whose earlier messages a NONE message of this lane waits for; null on lane 0. */
+    private final Link precedent;
+    /** This lane's unsettled messages by generation (guarded by lock). */
+    private final Generations generations = new Generations();
+    /** The latest generation a NONE message of lane 1 waits for, until settled; -1: none (guarded by lock). */
+    private long syncUpTo = -1;
     /** Lane 1's link, nudged when an acknowledgement here may let its held NONE message go; set once. */
     volatile Link follower;
     /** This lane's writer waits with a NONE message held for lane 0 at the head of its queue. */
     private volatile boolean holdsNone;
-    private volatile Connection active;
 
     // Guarded by lock.
-    /** The NONE ordering across lanes. */
-    private final LaneOrder order;
+    private final OutboundQueue queue;
     /** This node's stream to the peer on this lane. */
     private final OutboundStream out;
-    /** The messages waiting for the writer. */
-    private final Outbox outbox;
-    private final Resumption resumption;
-    /** Who owns the active connection's output: the writer thread, or a sender writing directly. */
-    private final OutputToken token = new OutputToken(lock, work);
-    private final LaneLife life;
+    /** Someone (the writer thread, or a sender writing directly) owns the active connection's output. */
+    private volatile boolean writerBusy;
+    /** The writer has work but waits for a direct write to give the output back. */
+    private boolean writerWaitsForToken;
+    /** The queue's size, readable without the lock as a hint. */
+    private volatile int queuedHint;
+    private volatile Connection active;
+    private volatile long downSinceNs;
+    private boolean expired;
+    /** Expired and removed from the messenger's peers: a later connection gets a new Peer. */
+    private boolean retired;
+    private boolean closed;
+
 
     Link(String nodeId, int lane, NetworkContext context, Link precedent) {
         this.nodeId = nodeId;
         this.lane = lane;
         this.context = context;
-        this.rules = new OutboundRules(nodeId, context);
-        var generations = new Generations();
-        this.order = new LaneOrder(generations, precedent == null ? null : precedent.order);
+        this.precedent = precedent;
         this.out = new OutboundStream(context.lanes().size() == 1, generations);
-        this.outbox = new Outbox(context.config().queueCapacity(), order, out);
-        this.resumption = new Resumption(out, inbound);
-        this.life = new LaneLife(nodeId, context);
+        this.queue = new OutboundQueue(context.config().queueCapacity());
+        this.downSinceNs = NetworkContext.nowNs();
     }
 
     // ---------------------------------------------------------------- sending
@@ -91,23 +94,42 @@ final class Link {
      * undeliverable notice to its sender.
      */
     void enqueue(Message message, long after) {
-        int hops = rules.hops(message);
+        // A message that came from the network is relayed: one more hop than it had made.
+        int hops = message.origin() == null ? 0 : message.origin().hops() + 1;
+        if (hops > context.config().maxHops()) {
+            throw new IllegalStateException("message " + message.messageId() + " was already relayed " + (hops - 1)
+                    + " times (maxHops=" + context.config().maxHops() + "): the nodes' routes disagree");
+        }
         Connection direct = active;
         // Encoded here, on the sender's thread: its size counts against the peer's byte bound.
-        byte[] xml = rules.encode(message, direct);
+        byte[] xml = encode(message, direct);
         OutboundQueue.Outcome outcome = null;
         InFlight written = null;
         lock.lock();
         try {
-            life.checkTakesMessages();
+            if (closed) {
+                throw new IllegalStateException("the network messenger of node '" + context.nodeId() + "' is closed");
+            }
+            if (expired) {
+                throw new IllegalStateException("node '" + nodeId + "' is unreachable: disconnected for more than "
+                        + TimeUnit.NANOSECONDS.toMillis(context.config().peerDownGraceNs()) + " ms");
+            }
             long maxBytes = context.config().maxQueuedBytesPerPeer();
-            var outgoing = new Outgoing(message, hops, xml, after, order.take());
-            if (direct != null && active == direct && !token.isHeld()
-                    && outbox.mayGoDirectly(outgoing, direct, context.config().windowMessages(), maxBytes)) {
-                token.hold(true);
+            var outgoing = new Outgoing(message, hops, xml, after, generations.take());
+            if (direct != null && active == direct && !writerBusy && queue.isEmpty()
+                    && !direct.requests.mustPrecedeMessages() && out.size() < context.config().windowMessages()
+                    && out.bytes() + xml.length <= maxBytes && out.lowRoomFor(outgoing, 0) && mayGo(outgoing)
+                    && direct.output().fitsDirectWrite(xml.length + Frame.DATA_OVERHEAD_BYTES)) {
+                writerBusy = true;
                 written = out.add(outgoing);
             } else {
-                outcome = outbox.offer(outgoing, maxBytes);
+                outcome = queue.offer(outgoing, maxBytes - out.bytes());
+                queuedHint = queue.size();
+                switch (outcome) {
+                    case OutboundQueue.Outcome.Evicted evicted -> evicted.evicted().forEach(this::settle);
+                    case OutboundQueue.Outcome.Full full -> settle(outgoing);
+                    default -> { }
+                }
                 if (!(outcome instanceof OutboundQueue.Outcome.Full)) {
                     work.signal();
                 }
@@ -119,7 +141,46 @@ final class Link {
             writeDirect(direct, written);
             return;
         }
-        rules.overflowed(message, outcome);
+        switch (outcome) {
+            case OutboundQueue.Outcome.Evicted evicted -> {
+                for (Outgoing each : evicted.evicted()) {
+                    context.losses().dropped(each.message(), nodeId, "evicted by a more critical message from the full queue"
+                            + " to node '" + nodeId + "'");
+                }
+            }
+            case OutboundQueue.Outcome.Full full -> {
+                String why = "the queue to node '" + nodeId + "' is full (queueCapacity="
+                        + context.config().queueCapacity() + " messages, maxQueuedBytesPerPeer="
+                        + context.config().maxQueuedBytesPerPeer() + " bytes with those in flight) of messages at"
+                        + " least as critical as this one";
+                if (message.qos().criticality().compareTo(Criticality.LOW) <= 0) {
+                    context.losses().dropped(message, nodeId, why);
+                } else {
+                    throw new IllegalStateException(why);
+                }
+            }
+            default -> { }
+        }
+    }
+
+    /**
+     * The message's XML, within the frame limit of {@code connection}'s peer (or this node's own
+     * limit when none is connected), or an exception the kernel reports to the sender.
+     */
+    private byte[] encode(Message message, Connection connection) {
+        byte[] xml;
+        try {
+            xml = context.codec().encode(message);
+        } catch (MessageFormatException e) {
+            throw new IllegalStateException("message " + message.messageId() + " does not encode: " + e.getMessage(), e);
+        }
+        int limit = connection != null ? connection.output().peerMaxFrameBytes() : context.config().maxFrameBytes();
+        if (xml.length + Frame.DATA_OVERHEAD_BYTES > limit) {
+            throw new IllegalStateException("message " + message.messageId() + " is a frame of "
+                    + (xml.length + Frame.DATA_OVERHEAD_BYTES) + " bytes, over the " + limit
+                    + " bytes node '" + nodeId + "' accepts");
+        }
+        return xml;
     }
 
     private void writeDirect(Connection connection, InFlight entry) {
@@ -135,7 +196,23 @@ final class Link {
 
     /** Whoever owned the output gives it back; a writer waiting for it may take its turn. */
     void endTurn() {
-        token.release();
+        lock.lock();
+        try {
+            writerBusy = false;
+            if (writerWaitsForToken) {
+                // Only then: waking an idle writer after every direct write would cost a thread
+                // switch per message.
+                writerWaitsForToken = false;
+                work.signalAll();
+            }
+        } finally {
+            lock.unlock();
+        }
+    }
+
+    private void awaitToken() throws InterruptedException {
+        writerWaitsForToken = true;
+        work.await();
     }
 
     // ---------------------------------------------------------------- connections
@@ -152,29 +229,68 @@ final class Link {
         }
     }
 
+    /** The outcome of {@link #activate}. */
+    /**
+     * @param refusal why the connection is refused for a protocol error, or null (a duplicate, or
+     *                the messenger closes)
+     */
+    record Activation(boolean accepted, Connection loser, List<InFlight> lost, String refusal) {
+    }
+
     /**
      * Makes {@code candidate}, handshaken, this peer's connection, unless a connection that wins
-     * the one-connection rule is already in use. Resumes or restarts both streams (see
-     * {@link Resumption#resume}).
+     * the one-connection rule is already in use. Resumes or restarts both streams.
+     *
+     * A peer claiming more of our stream than was sent is refused, and our stream starts afresh.
      */
-    LaneActivation activate(Connection candidate, Frame.Resume theirs, Supplier<byte[]> announceBody) {
+    Activation activate(Connection candidate, Frame.Resume theirs, java.util.function.Supplier<byte[]> announceBody) {
         synchronized (inbound) {
             lock.lock();
             try {
-                if (!life.mayConnect()) {
-                    return new LaneActivation(false, candidate, List.of(), null);
+                if (closed || retired) {
+                    return new Activation(false, candidate, List.of(), null);
                 }
-                LaneActivation activation = resumption.resume(active, candidate, theirs);
-                if (!activation.accepted()) {
-                    return activation;
+                Connection current = active;
+                Connection loser = null;
+                if (current != null && current != candidate) {
+                    if (!candidate.isPreferredOver(current)) {
+                        return new Activation(false, candidate, List.of(), null);
+                    }
+                    loser = current;
+                }
+                List<InFlight> lost = List.of();
+                if (theirs.knownStreamId() == out.streamId()) {
+                    // A RESUME that contradicts the stream: a restart raced a second connection, or
+                    // a connection in the peer's name acknowledged what it now denies (an impostor,
+                    // or a bug).
+                    String refusal = out.resumeRefusal(theirs.receivedCount());
+                    if (refusal != null) {
+                        // With a connection in use, the candidate is the one that lies (an
+                        // impostor, on a plain link): refuse it and leave the stream alone.
+                        // Without one, start the stream afresh so the next connection agrees.
+                        List<InFlight> unknown = current != null && current != candidate ? List.of() : out.reset();
+                        return new Activation(false, candidate, unknown, refusal);
+                    }
+                    out.acknowledge(theirs.receivedCount());
+                    candidate.requests.resend(out.unacknowledged());
+                } else {
+                    // The peer does not know our stream: what it did not acknowledge is of unknown
+                    // fate; the peer starts our stream from 0 (it adopts its id from our RESUME).
+                    lost = out.restartNumbering();
+                    candidate.requests.resend(List.of());
+                }
+                inbound.resume(theirs.streamId());
+                if (loser != null) {
+                    loser.requests.requestBye(CloseReason.DUPLICATE, "replaced by the connection dialed by '"
+                            + candidate.initiatorId() + "'");
                 }
                 active = candidate;
-                life.connected();
+                expired = false;
                 out.restartClock();
                 // Read under the lock: an announcement published meanwhile finds this connection active.
                 candidate.requests.announce(announceBody.get());
                 work.signalAll();
-                return activation;
+                return new Activation(true, loser, lost, null);
             } finally {
                 lock.unlock();
             }
@@ -192,7 +308,7 @@ final class Link {
                 return false;
             }
             active = null;
-            life.down();
+            downSinceNs = NetworkContext.nowNs();
             work.signalAll();
             return true;
         } finally {
@@ -220,28 +336,30 @@ final class Link {
         try {
             while (true) {
                 if (active != connection) {
-                    if (token.isHeld()) {
-                        token.await();
+                    if (writerBusy) {
+                        awaitToken();
                         continue;
                     }
                     WriterTurn last = connection.requests.takeBye();
-                    token.hold(last != null);
+                    writerBusy = last != null;
                     return last;
                 }
-                Outgoing head = outbox.peek();
-                boolean held = head != null && !order.mayGo(head);
+                Outgoing head = queue.peek();
+                boolean held = head != null && !mayGo(head);
                 holdsNone = held;
                 boolean sendable = head != null && out.size() < window && out.lowRoomFor(head, 0) && !held;
                 if (!connection.requests.hasRequests() && !sendable) {
                     long waitNs = connection.output().heartbeatDueNs() - NetworkContext.nowNs();
                     if (waitNs > 0) {
-                        work.awaitNanos(LaneOrder.waitNs(waitNs, held));
+                        // A NONE message held for lane 0 is looked at again every millisecond:
+                        // lane 0 never signals this lane, so its threads never take this lock.
+                        work.awaitNanos(held ? Math.min(waitNs, BARRIER_POLL_NS) : waitNs);
                         continue;
                     }
                     connection.requests.requestHeartbeat();
                 }
-                if (token.isHeld()) {
-                    token.await(); // a sender is writing directly; it signals when done
+                if (writerBusy) {
+                    awaitToken(); // a sender is writing directly; it signals when done
                     continue;
                 }
                 break;
@@ -250,8 +368,26 @@ final class Link {
             // New messages only once every message to send again is out: the peer expects the
             // stream in order.
             int room = connection.requests.mustPrecedeMessages() ? 0 : Math.min(batch, window - out.size());
-            outbox.fill(turn, room);
-            token.hold(true);
+            long lowChosen = 0;
+            while (turn.fresh.size() < room) {
+                Outgoing next = queue.peek();
+                if (next == null || !out.lowRoomFor(next, lowChosen) || !mayGo(next)) {
+                    break; // the rest are NONE or LOW too: they wait for acknowledgements
+                }
+                if (next.isSheddable()) {
+                    lowChosen += next.xml().length;
+                }
+                turn.fresh.add(queue.poll());
+            }
+            queuedHint = queue.size();
+            if (syncUpTo >= 0) {
+                if (generations.settledUpTo(syncUpTo)) {
+                    syncUpTo = -1;
+                } else if (!turn.fresh.isEmpty() || !turn.resend.isEmpty()) {
+                    turn.sync = true; // more of what the NONE message waits for goes out now
+                }
+            }
+            writerBusy = true;
             return turn;
         } finally {
             lock.unlock();
@@ -266,9 +402,10 @@ final class Link {
     List<InFlight> assign(Connection connection, List<Outgoing> encoded, List<Outgoing> givenUp) {
         lock.lock();
         try {
-            givenUp.forEach(order::settle);
+            givenUp.forEach(this::settle);
             if (active != connection) {
-                outbox.pushBack(encoded);
+                queue.pushBack(encoded);
+                queuedHint = queue.size();
                 work.signalAll();
                 return null;
             }
@@ -289,10 +426,11 @@ final class Link {
     long closeGeneration() {
         lock.lock();
         try {
-            long closed = order.close();
-            if (order.awaitSync(closed)) {
+            long closed = generations.close();
+            if (!generations.settledUpTo(closed)) {
                 // Its messages are settled when the peer acknowledges them, which it may put off
                 // for up to 10 ms: a SYNC after them asks it to at once.
+                syncUpTo = closed;
                 Connection connection = active;
                 if (connection != null) {
                     connection.requests.requestSync();
@@ -303,6 +441,21 @@ final class Link {
         } finally {
             lock.unlock();
         }
+    }
+
+    /** Whether every message of {@code generation} and before is settled here. Lock-free. */
+    boolean hasSettled(long generation) {
+        return generations.settledUpTo(generation);
+    }
+
+    /** Whether a NONE message waiting for lane 0 may go (lock held). */
+    private boolean mayGo(Outgoing next) {
+        return next.after() < 0 || precedent == null || precedent.hasSettled(next.after());
+    }
+
+    /** {@code outgoing} leaves this lane for good without having been written (lock held). */
+    private void settle(Outgoing outgoing) {
+        generations.settle(outgoing.generation());
     }
 
     /**
@@ -371,7 +524,7 @@ final class Link {
         if (out.isEmpty()) {
             connection.output().allDataAcknowledged();
         }
-        if (!outbox.isEmpty() && (windowWasFull && out.size() < window || lowWasFull)) {
+        if (!queue.isEmpty() && (windowWasFull && out.size() < window || lowWasFull)) {
             work.signal(); // the writer waited for room in the window, or for LOW room
         }
     }
@@ -411,7 +564,7 @@ final class Link {
 
     /** Since when no connection carries this lane (meaningful while {@link #active()} is null). */
     long downSinceNs() {
-        return life.downSinceNs();
+        return downSinceNs;
     }
 
     /**
@@ -423,7 +576,12 @@ final class Link {
     List<Outgoing> expire() {
         lock.lock();
         try {
-            return active != null || !life.retire() ? null : abandonAll();
+            if (active != null || retired || closed) {
+                return null;
+            }
+            expired = true; // perhaps already, alone: what was put back since is given up now
+            retired = true;
+            return abandonAll();
         } finally {
             lock.unlock();
         }
@@ -438,9 +596,11 @@ final class Link {
     List<Outgoing> expireAlone(long nowNs) {
         lock.lock();
         try {
-            if (active != null || !life.expireAlone(nowNs, outbox.isEmpty() && out.isEmpty())) {
-                return null;
+            if (active != null || closed || nowNs - downSinceNs < context.config().peerDownGraceNs()
+                    || expired && queue.isEmpty() && out.isEmpty()) {
+                return null; // (messages a replaced writer put back after it expired are given up too)
             }
+            expired = true;
             List<Outgoing> lost = abandonAll();
             return lost.isEmpty() ? null : lost;
         } finally {
@@ -452,7 +612,7 @@ final class Link {
     List<Outgoing> close() {
         lock.lock();
         try {
-            life.close();
+            closed = true;
             work.signalAll();
             return abandonAll();
         } finally {
@@ -461,11 +621,14 @@ final class Link {
     }
 
     private List<Outgoing> abandonAll() {
-        var lost = new ArrayList<Outgoing>(out.size() + outbox.size());
+        var lost = new ArrayList<Outgoing>(out.size() + queue.size());
         for (InFlight entry : out.reset()) {
             lost.add(entry.outgoing());
         }
-        lost.addAll(outbox.abandon());
+        List<Outgoing> waited = queue.drain();
+        waited.forEach(this::settle);
+        lost.addAll(waited);
+        queuedHint = 0;
         return lost;
     }
 
@@ -473,7 +636,7 @@ final class Link {
     int[] backlog() {
         lock.lock();
         try {
-            return new int[] {outbox.size(), out.size()};
+            return new int[] {queue.size(), out.size()};
         } finally {
             lock.unlock();
         }
