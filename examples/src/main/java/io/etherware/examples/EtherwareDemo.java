@@ -1,6 +1,5 @@
 package io.etherware.examples;
 
-import io.etherware.deploy.ControlCommand;
 import io.etherware.deploy.Launcher;
 import io.etherware.examples.bench.BenchCommand;
 import io.etherware.examples.migrate.ControlNodeCommand;
@@ -33,7 +32,7 @@ import picocli.CommandLine.Spec;
 @Command(name = "etherware-demo", mixinStandardHelpOptions = true, versionProvider = EtherwareDemo.Version.class,
         description = "The Etherware paper's experiments on a simulated inverted pendulum.",
         subcommands = {StressCommand.class, NetStressCommand.class, UpgradeCommand.class, MigrateCommand.class,
-            BenchCommand.class, DspBoardCommand.class, Launcher.class, ControlCommand.class, ControlNodeCommand.class, NetStressNodeCommand.class,
+            BenchCommand.class, DspBoardCommand.class, Launcher.class, ControlNodeCommand.class, NetStressNodeCommand.class,
             CommandLine.HelpCommand.class},
         footer = {"", "Plots and CSVs go to target/scenarios/<scenario>/ unless --out says otherwise;"
                 + " the bench writes target/bench/report.md and report.json."})
