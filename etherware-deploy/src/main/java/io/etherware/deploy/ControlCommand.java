@@ -14,8 +14,6 @@ import io.etherware.services.status.Status;
 import java.io.IOException;
 import java.io.PrintWriter;
 import java.net.InetSocketAddress;
-import java.nio.charset.StandardCharsets;
-import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
 import java.util.concurrent.Callable;
@@ -170,9 +168,8 @@ public final class ControlCommand implements Runnable {
             throw new IllegalArgumentException("TLS needs all four: --key-store, --key-store-password-file,"
                     + " --trust-store, --trust-store-password-file");
         }
-        char[] keyPassword = Files.readString(keyStorePasswordFile, StandardCharsets.UTF_8).stripTrailing().toCharArray();
-        char[] trustPassword = Files.readString(trustStorePasswordFile, StandardCharsets.UTF_8).stripTrailing()
-                .toCharArray();
+        char[] keyPassword = NetworkSections.readPassword(keyStorePasswordFile);
+        char[] trustPassword = NetworkSections.readPassword(trustStorePasswordFile);
         try {
             return ConnectionFactory.tls(keyStore, keyPassword, trustStore, trustPassword);
         } finally {
@@ -182,22 +179,10 @@ public final class ControlCommand implements Runnable {
     }
 
     private static InetSocketAddress address(String text) {
-        int colon = text.lastIndexOf(':');
         try {
-            if (colon <= 0) {
-                throw new NumberFormatException("no port");
-            }
-            String host = text.substring(0, colon);
-            if (host.startsWith("[") && host.endsWith("]")) {
-                host = host.substring(1, host.length() - 1);
-            }
-            var address = new InetSocketAddress(host, Integer.parseInt(text.substring(colon + 1)));
-            if (address.isUnresolved()) {
-                throw new IllegalArgumentException("--node=" + text + ": host '" + host + "' does not resolve");
-            }
-            return address;
-        } catch (NumberFormatException e) {
-            throw new IllegalArgumentException("--node=" + text + " is not HOST:PORT (" + e.getMessage() + ")", e);
+            return HostPort.parse(text);
+        } catch (IllegalArgumentException e) {
+            throw new IllegalArgumentException("--node=" + text + ": " + e.getMessage(), e);
         }
     }
 

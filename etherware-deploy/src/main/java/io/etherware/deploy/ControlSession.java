@@ -67,7 +67,7 @@ final class ControlSession implements AutoCloseable {
                         .peer(target).connectionFactory(factory).lanes(lanes).insecure(insecure)
                         .reconnectBackoff(Duration.ofMillis(50), Duration.ofMillis(200), 0.1).build();
             } catch (IllegalArgumentException e) {
-                throw new ControlException(e.getMessage().contains("beyond loopback") ? hostPort(target)
+                throw new ControlException(e.getMessage().contains("beyond loopback") ? HostPort.format(target)
                         + " is beyond loopback and plain TCP authenticates no one: give --key-store and --trust-store"
                         + " (TLS), or --insecure on a network you trust" : e.getMessage(), e);
             }
@@ -75,7 +75,7 @@ final class ControlSession implements AutoCloseable {
             long deadline = System.nanoTime() + timeout.toNanos();
             Optional<String> connected = awaitPeer(network, target, deadline);
             if (connected.isEmpty()) {
-                throw new ControlException("no node answered at " + hostPort(target) + " within " + timeout.toMillis()
+                throw new ControlException("no node answered at " + HostPort.format(target) + " within " + timeout.toMillis()
                         + " ms: is it running, and does it listen there" + (factory.authenticatesPeers()
                         ? "? With TLS, check that both certificates chain to the trust store's CA"
                         : "? If its network uses TLS, give --trust-store and --key-store"));
@@ -83,7 +83,7 @@ final class ControlSession implements AutoCloseable {
             // Its profiles arrive just after the handshake: wait for the status service's.
             long remainingNs = Math.max(deadline - System.nanoTime(), Duration.ofMillis(500).toNanos());
             if (!network.awaitResolvable(Status.profileOf(connected.get()), Duration.ofNanos(remainingNs))) {
-                throw new ControlException("node " + connected.get() + " at " + hostPort(target) + " announced no"
+                throw new ControlException("node " + connected.get() + " at " + HostPort.format(target) + " announced no"
                         + " status service (" + Status.profileOf(connected.get()) + "); a node the launcher started"
                         + " always has one");
             }
@@ -97,7 +97,7 @@ final class ControlSession implements AutoCloseable {
             throw e;
         } catch (RuntimeException e) {
             closeBoth(network, node);
-            throw new ControlException("cannot connect to " + hostPort(target) + ": " + e.getMessage(), e);
+            throw new ControlException("cannot connect to " + HostPort.format(target) + ": " + e.getMessage(), e);
         }
     }
 
@@ -130,10 +130,6 @@ final class ControlSession implements AutoCloseable {
         } finally {
             node.close();
         }
-    }
-
-    static String hostPort(InetSocketAddress address) {
-        return Launcher.hostPort(address);
     }
 
     /** {@return the tool's own node} */

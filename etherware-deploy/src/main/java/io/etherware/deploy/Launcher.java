@@ -69,13 +69,6 @@ public final class Launcher implements Callable<Integer> {
         System.exit(new CommandLine(new Launcher()).execute(args));
     }
 
-    /** {@code HOST:PORT}, an IPv6 address in brackets, as the deployment file writes addresses. */
-    static String hostPort(InetSocketAddress address) {
-        String host = address.getAddress() instanceof java.net.Inet6Address ? "[" + address.getAddress()
-                .getHostAddress() + "]" : address.getHostString();
-        return host + ":" + address.getPort();
-    }
-
     @Override
     public Integer call() throws Exception {
         PrintWriter out = spec.commandLine().getOut();
@@ -88,8 +81,8 @@ public final class Launcher implements Callable<Integer> {
                 out.println("OK " + file + ": node " + deployment.nodeId() + ", scheduler "
                         + deployment.scheduler().description() + ", " + deployment.components().size()
                         + " component(s)" + deployment.network().map(n -> ", listening on "
-                        + hostPort(n.listenAddress()) + ", " + n.peers().size() + " peer(s)").orElse(", no network")
-                        + deployment.view().map(v -> ", view on " + hostPort(v.config().listen())).orElse(""));
+                        + HostPort.format(n.listenAddress()) + ", " + n.peers().size() + " peer(s)").orElse(", no network")
+                        + deployment.view().map(v -> ", view on " + HostPort.format(v.config().listen())).orElse(""));
                 out.flush();
                 return 0;
             }
@@ -106,10 +99,10 @@ public final class Launcher implements Callable<Integer> {
         });
         Runtime.getRuntime().addShutdownHook(hook);
         if (addressFile != null && deployed.listenAddress().isPresent()) {
-            Files.writeString(addressFile, hostPort(deployed.listenAddress().get()) + "\n", StandardCharsets.UTF_8);
+            Files.writeString(addressFile, HostPort.format(deployed.listenAddress().get()) + "\n", StandardCharsets.UTF_8);
         }
         out.println("node " + deployment.nodeId() + " running" + deployed.listenAddress()
-                .map(a -> ", listening on " + hostPort(a)).orElse(""));
+                .map(a -> ", listening on " + HostPort.format(a)).orElse(""));
         deployed.viewUrl().ifPresent(url -> out.println("view on " + url));
         out.println(READY);
         out.flush();

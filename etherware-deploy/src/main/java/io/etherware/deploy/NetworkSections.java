@@ -117,7 +117,7 @@ final class NetworkSections {
 
     Deployment.ViewPlan view(XmlElement element) throws DeploymentException {
         String listen = element.attributes().get("listen");
-        boolean allowRemote = Boolean.parseBoolean(element.attribute("allowRemote").orElse("false"));
+        boolean allowRemote = DeploymentReader.flag(element, "allowRemote", false);
         try {
             return new Deployment.ViewPlan(new ViewConfig(address(element, "listen", listen), allowRemote),
                     element.line());
@@ -127,30 +127,26 @@ final class NetworkSections {
     }
 
     private InetSocketAddress address(XmlElement element, String attribute, String text) throws DeploymentException {
-        int colon = text.lastIndexOf(':');
-        String host = text.substring(0, colon);
-        if (host.startsWith("[") && host.endsWith("]")) {
-            host = host.substring(1, host.length() - 1);
+        try {
+            return HostPort.parse(text);
+        } catch (IllegalArgumentException e) {
+            throw at.problem(element, "<" + element.name() + " " + attribute + "=\"" + text + "\">: " + e.getMessage());
         }
-        int port = Integer.parseInt(text.substring(colon + 1));
-        if (port > 65_535) {
-            throw at.problem(element, "<" + element.name() + " " + attribute + "=\"" + text + "\">: port " + port
-                    + " is above 65535");
-        }
-        var address = new InetSocketAddress(host, port);
-        if (address.isUnresolved()) {
-            throw at.problem(element, "<" + element.name() + " " + attribute + "=\"" + text + "\">: host '" + host
-                    + "' does not resolve; check the name or write an address");
-        }
-        return address;
+    }
+
+    /**
+     * The password in {@code file}: its one line, without the line break.
+     *
+     * @throws IOException if the file cannot be read
+     */
+    static char[] readPassword(Path file) throws IOException {
+        return Files.readString(file, StandardCharsets.UTF_8).stripTrailing().toCharArray();
     }
 
     private char[] password(XmlElement tls, String attribute) throws DeploymentException {
         Path file = resolve(tls.attributes().get(attribute));
         try {
-            String text = Files.readString(file, StandardCharsets.UTF_8);
-            // One line; its line break is not part of the password.
-            return text.stripTrailing().toCharArray();
+            return readPassword(file);
         } catch (IOException e) {
             throw at.problem(tls, "<tls " + attribute + "=\"" + tls.attributes().get(attribute) + "\">: cannot read "
                     + file + " (" + e + "); the file holds the password on one line");
