@@ -13,21 +13,37 @@ import java.util.Objects;
  * life (a job that waits for its busy component is re-queued with the same placement, so its
  * order is kept).
  *
- * <p>Thread-safety: the immutable fields are safe everywhere. The placement is written once by
- * the scheduler on the submitting thread before the job is published to a queue, which makes it
- * visible to the dispatcher that takes it.
+ * <p><b>Reuse.</b> The kernel takes its jobs from a pool of the sending thread ({@link #pooled}), so
+ * that a send allocates nothing in steady state. A scheduler hands a job back with
+ * {@link #recycle()} once it has run ({@link JobRunner#run} returned true) and the scheduler holds
+ * no reference to it any more; the job may then carry another delivery. So neither a scheduler nor
+ * a {@code JobPlacementRule} may keep a job beyond that point: copy what is needed (as
+ * {@code DeadlineMiss} does). A job that is never recycled (refused, discarded at shutdown, or
+ * run by a scheduler that does not recycle) is left to the garbage collector, which is always safe.
+ *
+ * <p>Thread-safety: a job's delivery fields are written by the thread that makes or takes it from
+ * the pool, before it is submitted; the placement is written once by the scheduler on the
+ * submitting thread before the job is published to a queue. The queue's publication makes both
+ * visible to the dispatcher that takes it. {@link #link} is the scheduler's, used under the same
+ * publication.
  */
 public final class Job {
 
-    private final Message message;
-    private final String targetName;
-    private final Object target;
-    private final long sequence;
-    private final long releaseNs;
+    private Message message;
+    private String targetName;
+    private Object target;
+    private long sequence;
+    private long releaseNs;
 
     private int dispatcherId = -1;
     private long key;
     private boolean reserved;
+    /** The next job in a scheduler's intrusive queue, or null. */
+    private Job link;
+    /** The pool this job returns to, or null for a job made with the constructor. */
+    private final JobPool pool;
+    /** The next job in {@link #pool}'s free or returned list; the pool's. */
+    Job poolNext;
 
     /**
      * A job for one delivery, not yet placed.
@@ -40,11 +56,84 @@ public final class Job {
      *                   or a Tick's scheduled release; start latency is measured from it
      */
     public Job(Message message, String targetName, Object target, long sequence, long releaseNs) {
-        this.message = Objects.requireNonNull(message, "message");
-        this.targetName = Objects.requireNonNull(targetName, "targetName");
-        this.target = Objects.requireNonNull(target, "target");
-        this.sequence = sequence;
-        this.releaseNs = releaseNs;
+        this((JobPool) null);
+        set(message, targetName, target, sequence, releaseNs);
+    }
+
+    /** An empty job of {@code pool}, filled by {@link #set} before use. */
+    Job(JobPool pool) {
+        this.pool = pool;
+    }
+
+    /**
+     * A job for one delivery, not yet placed, taken from the calling thread's pool of recycled
+     * jobs when it has one (no allocation), else made. The same as the constructor otherwise.
+     *
+     * @param message    what is delivered
+     * @param targetName the receiving component's profile text, for accounting and logs
+     * @param target     the kernel's handle of the receiver; opaque to schedulers
+     * @param sequence   arrival order, unique and increasing within a node
+     * @param releaseNs  when the job became ready, on the node's monotonic clock
+     * @return a job that is not placed, not reserved and in no queue
+     */
+    public static Job pooled(Message message, String targetName, Object target, long sequence, long releaseNs) {
+        Job job = JobPool.take();
+        job.set(message, targetName, target, sequence, releaseNs);
+        return job;
+    }
+
+    private void set(Message newMessage, String newTargetName, Object newTarget, long newSequence, long newReleaseNs) {
+        this.message = Objects.requireNonNull(newMessage, "message");
+        this.targetName = Objects.requireNonNull(newTargetName, "targetName");
+        this.target = Objects.requireNonNull(newTarget, "target");
+        this.sequence = newSequence;
+        this.releaseNs = newReleaseNs;
+    }
+
+    /**
+     * Hands the job back for reuse: called by a scheduler once the job has run and it keeps no
+     * reference to it. A pooled job is cleared (so the pool holds no message) and returned to the
+     * pool of the thread that took it, and must not be used afterwards; a job made with the
+     * constructor is left as it is, to the garbage collector. Lock-free and allocation-free, from
+     * any thread.
+     *
+     * @throws IllegalStateException when a pooled job was recycled already (a scheduler's bug; the
+     *                               pool is left intact)
+     */
+    public void recycle() {
+        if (pool == null) {
+            return;
+        }
+        if (message == null) {
+            throw new IllegalStateException("job recycled twice");
+        }
+        message = null;
+        targetName = null;
+        target = null;
+        dispatcherId = -1;
+        key = 0;
+        reserved = false;
+        link = null;
+        pool.giveBack(this);
+    }
+
+    /**
+     * {@return the next job in the scheduler queue this job is in, or null} For a scheduler that
+     * chains its queued jobs through the jobs themselves, so queueing allocates nothing; a job is
+     * in at most one such queue at a time.
+     */
+    public Job link() {
+        return link;
+    }
+
+    /**
+     * Sets the scheduler's link (see {@link #link()}). Written before the job is published to the
+     * queue, and read by the thread that takes it.
+     *
+     * @param next the next job in the queue, or null
+     */
+    public void link(Job next) {
+        link = next;
     }
 
     /** {@return the message this job delivers} */

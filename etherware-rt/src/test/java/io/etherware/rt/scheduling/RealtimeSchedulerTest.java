@@ -65,25 +65,32 @@ class RealtimeSchedulerTest {
 
     /** A rule that reads the key from a table, for exact control of the queue order. */
     private static JobPlacementRule keyTable(Map<Long, Long> keyBySequence) {
+        return rule("key-table", 1, QueuePolicy.EARLIEST_DEADLINE_FIRST,
+                job -> new Placement(0, keyBySequence.getOrDefault(job.sequence(), Long.MIN_VALUE)));
+    }
+
+    /** A placement rule made of its parts. */
+    private static JobPlacementRule rule(String name, int dispatchers, QueuePolicy policy,
+                                         java.util.function.Function<Job, Placement> placement) {
         return new JobPlacementRule() {
             @Override
             public Placement place(Job job, long nowNs) {
-                return new Placement(0, keyBySequence.getOrDefault(job.sequence(), Long.MIN_VALUE));
+                return placement.apply(job);
             }
 
             @Override
             public int dispatchersRequired() {
-                return 1;
+                return dispatchers;
             }
 
             @Override
             public QueuePolicy queuePolicy(int dispatcherId) {
-                return QueuePolicy.EARLIEST_DEADLINE_FIRST;
+                return policy;
             }
 
             @Override
             public String name() {
-                return "key-table";
+                return name;
             }
         };
     }
@@ -110,6 +117,58 @@ class RealtimeSchedulerTest {
         assertTrue(Platform.current().cpuPartition().isEmpty(), "the scheduler's share of the partition is released");
         assertTrue(java.util.Arrays.equals(allowed, io.etherware.rt.platform.internal.LinuxNative.getAffinity(0)),
                 "and this thread may use every CPU it had");
+    }
+
+    @Test
+    void shouldRunEveryPooledJobOfManySubmittersExactlyOnceAndReuseTheJobs() throws Exception {
+        int submitters = 4;
+        int perSubmitter = 20_000;
+        int window = 256;
+        var runs = new java.util.concurrent.atomic.AtomicIntegerArray(submitters * perSubmitter);
+        var handled = new java.util.concurrent.atomic.AtomicLongArray(submitters);
+        java.util.Set<Job> seen = ConcurrentHashMap.newKeySet();
+        var twoDispatchers = rule("by-parity", 2, QueuePolicy.EARLIEST_DEADLINE_FIRST,
+                job -> new Placement((int) (job.sequence() & 1), job.sequence()));
+        start(RealtimeSchedulerConfig.builder().threadSchedulingRule(ThreadSchedulingRule.nonRealtime(2))
+                .placementRule(twoDispatchers).build(), (job, nowNs) -> {
+                    seen.add(job);
+                    int index = (int) job.sequence();
+                    runs.incrementAndGet(index);
+                    handled.incrementAndGet(index / perSubmitter);
+                    return true;
+                }, NodeClock.system());
+        var message = TestJobs.job("sink", Criticality.HIGH, 0, 0).message();
+        var threads = new ArrayList<Thread>();
+        var refused = new java.util.concurrent.atomic.AtomicInteger();
+        for (int s = 0; s < submitters; s++) {
+            int submitter = s;
+            threads.add(Thread.ofPlatform().start(() -> {
+                for (int i = 0; i < perSubmitter; i++) {
+                    // At most a window of jobs out per submitter, so its pool is never exhausted.
+                    while (i - handled.get(submitter) >= window) {
+                        java.util.concurrent.locks.LockSupport.parkNanos(50_000);
+                    }
+                    long sequence = (long) submitter * perSubmitter + i;
+                    if (!scheduler.submit(Job.pooled(message, "sink", "sink", sequence, 0L))) {
+                        refused.incrementAndGet();
+                    }
+                }
+            }));
+        }
+        for (Thread thread : threads) {
+            thread.join(TimeUnit.SECONDS.toMillis(60));
+            assertFalse(thread.isAlive(), "a submitter is stuck: jobs were lost");
+        }
+        long endNs = System.nanoTime() + TimeUnit.SECONDS.toNanos(30);
+        while (scheduler.stats().jobsRun() < (long) submitters * perSubmitter && System.nanoTime() < endNs) {
+            Thread.sleep(1);
+        }
+        assertEquals(0, refused.get());
+        for (int i = 0; i < runs.length(); i++) {
+            assertEquals(1, runs.get(i), "job " + i + " ran " + runs.get(i) + " times");
+        }
+        assertTrue(seen.size() <= submitters * 1024, seen.size() + " distinct jobs for "
+                + submitters * perSubmitter + " deliveries: the dispatchers' recycled jobs were reused");
     }
 
     @Test
@@ -315,27 +374,7 @@ class RealtimeSchedulerTest {
     @Test
     void shouldRunOnDispatcherZeroWhenTheRuleNamesADispatcherThatDoesNotExist() throws Exception {
         var ran = new LinkedBlockingQueue<Job>();
-        var broken = new JobPlacementRule() {
-            @Override
-            public Placement place(Job job, long nowNs) {
-                return new Placement(7, 0);
-            }
-
-            @Override
-            public int dispatchersRequired() {
-                return 1;
-            }
-
-            @Override
-            public QueuePolicy queuePolicy(int dispatcherId) {
-                return QueuePolicy.FIFO;
-            }
-
-            @Override
-            public String name() {
-                return "broken";
-            }
-        };
+        var broken = rule("broken", 1, QueuePolicy.FIFO, job -> new Placement(7, 0));
         start(RealtimeSchedulerConfig.builder().threadSchedulingRule(ThreadSchedulingRule.nonRealtime(2))
                 .placementRule(broken).build(), (job, nowNs) -> ran.add(job), NodeClock.system());
         assertTrue(scheduler.submit(job("a", QoS.NONE, 0)));

@@ -33,7 +33,8 @@ import org.slf4j.LoggerFactory;
  * <p>Owned by {@link KernelCore}, which resolves profiles and hands messages here.
  *
  * <p>Thread-safety: every method may be called from any thread and takes no lock; the per-message
- * path allocates only the job.
+ * path allocates nothing in steady state (jobs come from the sending thread's pool, see
+ * {@link Job#pooled}).
  */
 final class Delivery {
 
@@ -105,7 +106,7 @@ final class Delivery {
         if (shell.pens(message)) {
             sequence += PEN_OFFSET;
         }
-        Job job = new Job(message, shell.name(), shell, sequence, releaseNs);
+        Job job = Job.pooled(message, shell.name(), shell, sequence, releaseNs);
         if (!scheduler.submit(job)) {
             shell.leaveQueue();
             countInbound(message, -1);
@@ -160,7 +161,7 @@ final class Delivery {
             return;
         }
         Message carrier = entry.outcomeMessage();
-        Job job = new Job(carrier, requester.name(), entry, jobSequence.getAndIncrement(), clock.nanoTime());
+        Job job = Job.pooled(carrier, requester.name(), entry, jobSequence.getAndIncrement(), clock.nanoTime());
         if (!scheduler.submit(job)) {
             discard(job);
         }
