@@ -2,45 +2,18 @@ package io.etherware.services.management;
 
 import io.etherware.core.component.Component;
 import io.etherware.core.component.ComponentContext;
-import io.etherware.core.component.Shell;
 import io.etherware.core.kernel.ComponentHost;
-import io.etherware.core.kernel.Endpoint;
 import io.etherware.core.kernel.EtherwareNode;
-import io.etherware.core.kernel.ProfileResolutionException;
-import io.etherware.core.kernel.SwapTimings;
-import io.etherware.core.message.Criticality;
-import io.etherware.core.message.QoS;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
-import io.etherware.services.management.AccessRule.Operation;
 import io.etherware.services.management.ManagementFailure.Reason;
 import io.etherware.services.management.internal.AccessControl;
 import io.etherware.services.management.internal.ImplementationLoader;
-import io.etherware.services.management.internal.LoadFailure;
 import io.etherware.services.management.internal.MigrationSource;
 import io.etherware.services.management.internal.MigrationTarget;
 import io.etherware.services.network.NetworkMessenger;
-import java.net.URLClassLoader;
-import java.time.Duration;
-import java.util.Map;
 import java.util.Objects;
-import java.util.concurrent.CompletableFuture;
-import java.util.concurrent.CompletionException;
-import java.util.concurrent.ConcurrentHashMap;
-import java.util.concurrent.Executor;
-import java.util.concurrent.ExecutionException;
-import java.util.concurrent.ExecutorService;
-import java.util.concurrent.Executors;
-import java.util.concurrent.RejectedExecutionException;
-import java.util.concurrent.TimeUnit;
-import java.util.concurrent.TimeoutException;
-import java.util.concurrent.atomic.AtomicBoolean;
-import java.util.concurrent.atomic.AtomicInteger;
 import java.util.concurrent.atomic.AtomicReference;
-import java.util.concurrent.atomic.LongAdder;
-import java.util.function.BiConsumer;
-import java.util.function.Consumer;
-import org.slf4j.Logger;
 
 /**
  * A node's management service (paper Section VI-C): a component at
@@ -96,8 +69,9 @@ import org.slf4j.Logger;
  */
 public final class ManagementService implements Component {
 
-    private static final String UPGRADE = "upgrade";
-    private static final String MIGRATE = "migrate";
+    // The parts, each given what it needs: Upgrades and Migrations serve the requests, sharing a
+    // ManagementContext made at each start; two OperationQueues are the worker and the steps thread;
+    // ManagementCounters and JarLoaders are shared by the instances that restarts make.
 
     private final ComponentHost kernel;
     private final ManagementConfig config;
@@ -105,21 +79,15 @@ public final class ManagementService implements Component {
     private final ImplementationLoader loader;
     private final AccessControl access;
     /** The jar class loader behind each component upgraded from a jar; closed when replaced. */
-    private final Map<Profile, URLClassLoader> jarLoaders;
-    private final Counters counters;
+    private final JarLoaders jarLoaders;
+    private final ManagementCounters counters;
     /** Upgrades' loading and migrations away from this node: one at a time, in arrival order. */
-    private ExecutorService worker;
+    private final OperationQueue worker;
     /** PREPARE steps of migrations into this node: apart, so two nodes migrating to each other go on. */
-    private ExecutorService steps;
-    /** Requests handed to the worker and not yet answered or done (the one in progress included). */
-    private final AtomicInteger operationsIn = new AtomicInteger();
-    /** PREPARE steps handed to the steps thread and not yet answered. */
-    private final AtomicInteger stepsIn = new AtomicInteger();
-    private Executor continuations;
-    private MigrationSource migrationSource;
-    private MigrationTarget migrationTarget;
-    private ComponentContext context;
-    private Logger log;
+    private final OperationQueue steps;
+    private ManagementContext running;
+    private Upgrades upgrades;
+    private Migrations migrations;
 
     /**
      * A service managing the components of {@code kernel}'s node; add it at
@@ -143,11 +111,11 @@ public final class ManagementService implements Component {
      * @param network the node's started messenger, or null
      */
     public ManagementService(ComponentHost kernel, ManagementConfig config, NetworkMessenger network) {
-        this(kernel, config, network, new Counters(), new ConcurrentHashMap<>());
+        this(kernel, config, network, new ManagementCounters(), new JarLoaders());
     }
 
     private ManagementService(ComponentHost kernel, ManagementConfig config, NetworkMessenger network,
-                              Counters counters, Map<Profile, URLClassLoader> jarLoaders) {
+                              ManagementCounters counters, JarLoaders jarLoaders) {
         this.kernel = Objects.requireNonNull(kernel, "kernel");
         this.config = Objects.requireNonNull(config, "config");
         Management.registerContents(kernel.contentsTypes());
@@ -157,6 +125,10 @@ public final class ManagementService implements Component {
         this.access = new AccessControl(kernel, config);
         this.counters = counters;
         this.jarLoaders = jarLoaders;
+        this.worker = new OperationQueue("etherware-management-" + kernel.nodeId(), kernel.nodeId(), config,
+                counters.busy);
+        this.steps = new OperationQueue("etherware-management-steps-" + kernel.nodeId(), kernel.nodeId(), config,
+                counters.busy);
     }
 
     /**
@@ -200,80 +172,14 @@ public final class ManagementService implements Component {
      */
     @Override
     public void onStart(ComponentContext context) {
-        this.context = context;
-        this.log = context.logger();
-        this.worker = Executors.newSingleThreadExecutor(Thread.ofPlatform().daemon()
-                .name("etherware-management-" + kernel.nodeId()).factory());
-        this.steps = Executors.newSingleThreadExecutor(Thread.ofPlatform().daemon()
-                .name("etherware-management-steps-" + kernel.nodeId()).factory());
-        this.continuations = inlineWhenRefused(worker);
-        this.migrationSource = new MigrationSource(kernel, config, network, access);
+        this.running = new ManagementContext(kernel, config, context, context.logger(), counters, access, jarLoaders);
+        worker.start();
+        steps.start();
+        this.upgrades = new Upgrades(running, loader, worker);
         // The answers of steps into this node must not wait for this node's own migration away,
         // which may be waiting for the other node's answers.
-        this.migrationTarget = new MigrationTarget(kernel, config, loader, inlineWhenRefused(steps), this::installed);
-    }
-
-    /** Runs a task on {@code pool}, or where it completes if the pool has stopped. */
-    private static Executor inlineWhenRefused(ExecutorService pool) {
-        // After onStop, an operation in flight still answers: on the thread that completes it.
-        return task -> {
-            try {
-                pool.execute(task);
-            } catch (RejectedExecutionException refused) {
-                task.run();
-            }
-        };
-    }
-
-    /**
-     * Gives back a request's place in its queue, once: before its answer is sent, so that whoever
-     * asks again on that answer finds the place free.
-     */
-    private static final class Permit {
-        private final AtomicInteger in;
-        private final AtomicBoolean released = new AtomicBoolean();
-
-        Permit(AtomicInteger in) {
-            this.in = in;
-        }
-
-        void release() {
-            if (released.compareAndSet(false, true)) {
-                in.decrementAndGet();
-            }
-        }
-    }
-
-    /**
-     * Hands {@code task} to {@code pool} if fewer than {@link ManagementConfig#maxQueuedOperations()}
-     * wait besides the one in progress ({@code in} counts them); otherwise, or if the service stops,
-     * answers the request through {@code failure} (BUSY with the bound, or SERVICE_FAILED). The
-     * task releases its permit before it answers.
-     */
-    private void submit(ExecutorService pool, AtomicInteger in, Consumer<Permit> task,
-                           BiConsumer<Reason, String> failure) {
-        if (in.incrementAndGet() > 1 + config.maxQueuedOperations()) {
-            in.decrementAndGet();
-            counters.busy.increment();
-            failure.accept(Reason.BUSY, "the management service of node '" + kernel.nodeId() + "' has "
-                    + config.maxQueuedOperations() + " operations waiting behind the one in progress"
-                    + " (maxQueuedOperations); nothing was done: ask again later");
-            return;
-        }
-        var permit = new Permit(in);
-        try {
-            pool.execute(() -> {
-                try {
-                    task.accept(permit);
-                } finally {
-                    permit.release();
-                }
-            });
-        } catch (RejectedExecutionException e) {
-            permit.release();
-            failure.accept(Reason.SERVICE_FAILED, "the management service of node '" + kernel.nodeId()
-                    + "' is stopping");
-        }
+        this.migrations = new Migrations(running, worker, steps, new MigrationSource(kernel, config, network, access),
+                new MigrationTarget(kernel, config, loader, steps.continuations(), jarLoaders::installed));
     }
 
     @Override
@@ -296,331 +202,20 @@ public final class ManagementService implements Component {
     @Override
     public void onMessage(Message message, ComponentContext context) {
         switch (message.contents()) {
-            case UpgradeRequest request -> accept(message, request);
-            case MigrateRequest request -> acceptMigration(message, request);
-            case MigrationStep step -> acceptStep(message, step);
-            case Prepared prepared when context.self().equals(message.sender()) -> swap(prepared);
+            case UpgradeRequest request -> upgrades.accept(message, request);
+            case MigrateRequest request -> migrations.accept(message, request);
+            case MigrationStep step -> migrations.acceptStep(message, step);
+            case Upgrades.Prepared prepared when context.self().equals(message.sender()) -> upgrades.swap(prepared);
             default -> {
                 if (message.hasSender() && !message.isReply()) {
                     counters.refused.increment();
-                    reply(message, new ManagementFailure(message.contents().getClass().getSimpleName(),
+                    running.reply(message, new ManagementFailure(message.contents().getClass().getSimpleName(),
                             context.self(), Reason.BAD_REQUEST, "the management service does not serve "
                             + message.contents().getClass().getSimpleName() + " messages; send an UpgradeRequest"));
                 } else {
-                    log.debug("ignored {} ({})", message.messageId(), message.contents());
+                    running.log().debug("ignored {} ({})", message.messageId(), message.contents());
                 }
             }
-        }
-    }
-
-    /**
-     * Refuses (counts, logs and answers) a request that arrived from another node unless the
-     * access list lets that node ask for {@code operation} on {@code target}; see
-     * {@link ManagementConfig} for the rule.
-     */
-    private boolean refused(Message message, Operation operation, String operationName, Profile target) {
-        String refusal = access.refusal(message, operation, operationName, target);
-        if (refusal == null && message.contents() instanceof MigrationStep step) {
-            refusal = access.stepRefusal(message, step);
-        }
-        if (refusal == null) {
-            return false;
-        }
-        counters.refused.increment();
-        log.warn("refused {} request {} of '{}' from node '{}' (sender '{}'): {}", operationName, message.messageId(),
-                target, message.origin().nodeId(), message.sender(), refusal);
-        reply(message, new ManagementFailure(operationName, target, Reason.REMOTE_REFUSED, refusal));
-        return true;
-    }
-
-    private void accept(Message message, UpgradeRequest request) {
-        long receivedNs = kernel.clock().nanoTime();
-        if (refused(message, Operation.UPGRADE, UPGRADE, request.target())) {
-            return;
-        }
-        submit(worker, operationsIn, permit -> upgrade(message, request, receivedNs, permit),
-                (reason, error) -> fail(message, request, reason, error));
-    }
-
-    /**
-     * An upgrade loaded by the worker, handed back to the service's dispatcher as a message to
-     * itself, carrying the request's QoS: the swap then starts at the request's priority (paper
-     * Section VI-C1). Never leaves the node (it is not a registered contents type).
-     */
-    private record Prepared(Message message, UpgradeRequest request, Shell shell, ImplementationLoader.Loaded loaded,
-                            long loadNs, long receivedNs, CompletableFuture<Long> firstHandling,
-                            CompletableFuture<Void> swapped)
-            implements io.etherware.core.message.Contents {
-    }
-
-    /** Worker thread: resolve and load, then hand the swap back to the dispatcher. */
-    private void upgrade(Message message, UpgradeRequest request, long receivedNs, Permit permit) {
-        Shell shell;
-        try {
-            shell = localShell(request.target());
-        } catch (LoadFailure e) {
-            permit.release();
-            fail(message, request, e.reason(), e.getMessage());
-            return;
-        }
-        long loadStartNs = kernel.clock().nanoTime();
-        ImplementationLoader.Loaded loaded;
-        try {
-            loaded = loader.load(request.className(), request.jarPath(), request.configuration());
-        } catch (LoadFailure e) {
-            permit.release();
-            fail(message, request, e.reason(), e.getMessage());
-            return;
-        } catch (RuntimeException | LinkageError e) {
-            permit.release();
-            fail(message, request, Reason.CLASS_NOT_LOADABLE, "loading '" + request.className() + "' failed: " + e);
-            return;
-        }
-        long loadNs = kernel.clock().nanoTime() - loadStartNs;
-        // Armed here, not on the dispatcher: the timer's bookkeeping stays out of the swap gap.
-        var firstHandling = new CompletableFuture<Long>();
-        firstHandling.completeOnTimeout(SwapTimings.UNKNOWN_NS, config.firstMessageWaitNs(), TimeUnit.NANOSECONDS);
-        var swapped = new CompletableFuture<Void>();
-        try {
-            context.send(context.self(), new Prepared(message, request, shell, loaded, loadNs, receivedNs,
-                    firstHandling, swapped), message.qos());
-        } catch (RuntimeException e) {
-            loaded.discard();
-            permit.release();
-            fail(message, request, Reason.SERVICE_FAILED, "the management service could not schedule the swap: " + e);
-            return;
-        }
-        // One operation at a time: the next waits until this swap is done (or given up waiting for).
-        try {
-            swapped.get(config.settleWaitNs() + config.migrationStepTimeoutNs(), TimeUnit.NANOSECONDS);
-        } catch (ExecutionException | TimeoutException e) {
-            // Answered by the swap's own continuation; the next operation may go.
-        } catch (InterruptedException e) {
-            Thread.currentThread().interrupt();
-        }
-    }
-
-    /**
-     * Dispatcher: starts the swap without waiting for it. If the component is between messages
-     * the swap runs here and now; otherwise the kernel runs it on the component's dispatcher
-     * when its current message is done. Nothing else happens here, because until the swap is over
-     * (and, on a shared dispatcher, until this handler returns) the component's next message waits:
-     * the answer is assembled on the worker once the new logic has begun its first message.
-     */
-    private void swap(Prepared prepared) {
-        Message message = prepared.message();
-        UpgradeRequest request = prepared.request();
-        Shell shell = prepared.shell();
-        ImplementationLoader.Loaded loaded = prepared.loaded();
-        String oldImplementation = shell.logicType().getName();
-        CompletableFuture<Long> firstHandling = prepared.firstHandling();
-        CompletableFuture<SwapTimings> swap;
-        try {
-            // When no request of the old logic is in flight (within the settle wait): its outcome
-            // then reaches the callback that waits for it instead of a replaced logic.
-            swap = kernel.swapAsync(shell.profile(), loaded.factory(), firstHandling::complete,
-                    Duration.ofNanos(config.settleWaitNs()));
-        } catch (RuntimeException e) {
-            loaded.discard();
-            prepared.swapped().complete(null);
-            fail(message, request, Reason.UNKNOWN_COMPONENT, "component '" + shell.profile() + "' went away: " + e);
-            return;
-        }
-        // Not ...Async: on success this runs inside the swap and must cost nothing; only a failure
-        // (the slow path) goes to the worker.
-        swap.whenComplete((timings, error) -> {
-            prepared.swapped().complete(null);
-            if (error != null) {
-                continuations.execute(() -> rolledBack(message, request, shell, loaded, oldImplementation, error));
-            }
-        });
-        // Runs when both are known: the new logic's first message began (or the wait ended).
-        swap.thenAcceptBothAsync(firstHandling, (timings, firstNs) -> {
-            installed(shell.profile(), loaded.loader());
-            answer(message, shell.profile(), oldImplementation, loaded, prepared.loadNs(), timings, firstNs,
-                    prepared.receivedNs());
-        }, continuations);
-    }
-
-    private void rolledBack(Message message, UpgradeRequest request, Shell shell, ImplementationLoader.Loaded loaded,
-                            String oldImplementation, Throwable error) {
-        loaded.discard();
-        Throwable cause = error instanceof CompletionException && error.getCause() != null ? error.getCause() : error;
-        fail(message, request, Reason.ROLLED_BACK, "the swap of '" + shell.profile() + "' to "
-                + loaded.type().getName() + " was rolled back, " + oldImplementation + " serves on: " + cause);
-    }
-
-    private Shell localShell(Profile target) throws LoadFailure {
-        Endpoint endpoint;
-        try {
-            endpoint = kernel.registry().resolve(target);
-        } catch (ProfileResolutionException e) {
-            throw new LoadFailure(Reason.UNKNOWN_COMPONENT, e.getMessage());
-        }
-        if (!(endpoint instanceof Endpoint.Local local)) {
-            throw new LoadFailure(Reason.UNKNOWN_COMPONENT, "'" + target + "' is hosted on another node, not on '"
-                    + kernel.nodeId() + "'; send the request to that node's management service");
-        }
-        Shell shell = local.shell();
-        if (shell.profile().equals(context.self())) {
-            throw new LoadFailure(Reason.BAD_REQUEST, "the management service cannot upgrade or migrate itself");
-        }
-        if (shell.state() != Shell.State.RUNNING) {
-            throw new LoadFailure(Reason.NOT_RUNNING, "component '" + shell.profile() + "' is " + shell.state()
-                    + "; only a RUNNING component can be upgraded or migrated");
-        }
-        return shell;
-    }
-
-    // ---------------------------------------------------------------- migration
-
-    private void acceptMigration(Message message, MigrateRequest request) {
-        long receivedNs = kernel.clock().nanoTime();
-        if (refused(message, Operation.MIGRATE, MIGRATE, request.target())) {
-            return;
-        }
-        submit(worker, operationsIn, permit -> migrate(message, request, receivedNs, permit),
-                (reason, error) -> failMigration(message, request.target(), reason, error));
-    }
-
-    /** Worker thread: the whole migration, blocking for the target's answers. */
-    private void migrate(Message message, MigrateRequest request, long receivedNs, Permit permit) {
-        MigrationResult result;
-        try {
-            Shell shell = localShell(request.target());
-            result = migrationSource.migrate(shell, request, receivedNs);
-        } catch (LoadFailure e) {
-            permit.release();
-            failMigration(message, request.target(), e.reason(), e.getMessage());
-            return;
-        } catch (RuntimeException e) {
-            permit.release();
-            log.error("migration of '{}' failed unexpectedly", request.target(), e);
-            failMigration(message, request.target(), Reason.SERVICE_FAILED, "the migration failed unexpectedly: " + e);
-            return;
-        }
-        installed(result.target(), null);
-        counters.migrated.increment();
-        log.info("migrated '{}' to '{}' ({} held messages): prepare {} us, quiesce {} us, transfer {} us,"
-                + " relocate {} us, gap {}", result.target(), result.toNode(), result.heldMessages(),
-                result.prepareNs() / 1_000, result.quiesceNs() / 1_000, result.transferNs() / 1_000,
-                result.relocateNs() / 1_000, result.gapNs() < 0 ? "unknown" : result.gapNs() / 1_000 + " us");
-        permit.release();
-        if (message.hasSender()) {
-            context.reply(message, result);
-        }
-    }
-
-    /** A step of a migration into this node, from its source's management service. */
-    private void acceptStep(Message message, MigrationStep step) {
-        String operation = "migration " + step.phase();
-        if (refused(message, Operation.MIGRATE, operation, step.target())) {
-            return;
-        }
-        if (step.phase() == MigrationStep.Phase.INSTALL) {
-            // On the dispatcher, like an upgrade's swap: restore and registration are on the gap's
-            // path, and the class was loaded off the dispatchers by PREPARE.
-            try {
-                replyBehindEverything(message, migrationTarget.install(step));
-            } catch (LoadFailure e) {
-                failMigration(message, step.target(), e.reason(), e.getMessage());
-            } catch (RuntimeException e) {
-                failMigration(message, step.target(), Reason.SERVICE_FAILED, operation + " failed: " + e);
-            }
-            return;
-        }
-        if (step.phase() == MigrationStep.Phase.HANDOVER) {
-            // On the dispatcher: the hand-over is on the migration gap's path.
-            try {
-                migrationTarget.handover(step).whenComplete((done, error) -> {
-                    if (error != null) {
-                        failMigration(message, step.target(), Reason.SERVICE_FAILED, "hand-over failed: " + error);
-                    } else {
-                        counters.migratedIn.increment();
-                        context.reply(message, done);
-                    }
-                });
-            } catch (LoadFailure e) {
-                failMigration(message, step.target(), e.reason(), e.getMessage());
-            }
-            return;
-        }
-        submit(steps, stepsIn, permit -> {
-            MigrationStepDone done;
-            try {
-                done = migrationTarget.prepare(step);
-            } catch (LoadFailure e) {
-                permit.release();
-                failMigration(message, step.target(), e.reason(), e.getMessage());
-                return;
-            } catch (RuntimeException e) {
-                permit.release();
-                failMigration(message, step.target(), Reason.SERVICE_FAILED, operation + " failed: " + e);
-                return;
-            }
-            permit.release();
-            context.reply(message, done);
-        }, (reason, error) -> failMigration(message, step.target(), reason, error));
-    }
-
-    /**
-     * The answer to an INSTALL, at the lowest criticality: the link's queue sends it after every
-     * message queued before it for the source, among them those this node's senders sent to the
-     * component before it was installed here. The source receives them, and forwards them back,
-     * before it switches (see the package documentation). If a full queue sheds it, the source's
-     * step times out and the component resumes there: nothing is lost.
-     */
-    private void replyBehindEverything(Message request, MigrationStepDone done) {
-        if (request.hasSender()) {
-            kernel.send(new Message(request.sender(), context.self(), kernel.clock().epochNanos(),
-                    QoS.of(Criticality.NONE), done, kernel.newMessageId(), request.messageId()));
-        }
-    }
-
-    private void failMigration(Message message, Profile target, Reason reason, String error) {
-        counters.failed.increment();
-        String operation = message.contents() instanceof MigrationStep step ? "migration " + step.phase() : MIGRATE;
-        log.warn("{} request {} of '{}' failed ({}): {}", operation, message.messageId(), target, reason, error);
-        reply(message, new ManagementFailure(operation, target, reason, error));
-    }
-
-    /** After a successful swap: the jar loader of the replaced logic is no longer needed. */
-    private void installed(Profile profile, URLClassLoader newLoader) {
-        URLClassLoader previous = newLoader == null ? jarLoaders.remove(profile) : jarLoaders.put(profile, newLoader);
-        ImplementationLoader.closeQuietly(previous);
-    }
-
-    private void answer(Message message, Profile target, String oldImplementation, ImplementationLoader.Loaded loaded,
-                        long loadNs, SwapTimings timings, long firstNs, long receivedNs) {
-        long gapNs = firstNs == SwapTimings.UNKNOWN_NS || timings.lastOldHandlingEndNs() == SwapTimings.UNKNOWN_NS
-                ? -1 : firstNs - timings.lastOldHandlingEndNs();
-        long pauseNs = timings.pauseNs() == SwapTimings.UNKNOWN_NS ? -1 : timings.pauseNs();
-        long totalNs = timings.swapEndNs() == SwapTimings.UNKNOWN_NS ? -1 : timings.swapEndNs() - receivedNs;
-        var result = new UpgradeResult(target, oldImplementation, loaded.type().getName(), loaded.source(),
-                timings.stateSchemaVersion(), loadNs, pauseNs, gapNs, totalNs);
-        counters.upgraded.increment();
-        log.info("upgraded '{}' from {} to {} ({}): load {} us, pause {} us, gap {}", target, oldImplementation,
-                result.newImplementation(), result.source(), loadNs / 1_000, pauseNs / 1_000,
-                gapNs < 0 ? "unknown" : gapNs / 1_000 + " us");
-        reply(message, result);
-    }
-
-    private void fail(Message message, UpgradeRequest request, Reason reason, String error) {
-        counters.failed.increment();
-        log.warn("upgrade request {} of '{}' to {} failed ({}): {}", message.messageId(), request.target(),
-                request.className(), reason, error);
-        reply(message, new ManagementFailure(UPGRADE, request.target(), reason, error));
-    }
-
-    private void reply(Message request, ManagementFailure failure) {
-        if (request.hasSender()) {
-            context.reply(request, failure);
-        }
-    }
-
-    private void reply(Message request, UpgradeResult result) {
-        if (request.hasSender()) {
-            context.reply(request, result);
         }
     }
 
@@ -681,15 +276,5 @@ public final class ManagementService implements Component {
      */
     public long busyCount() {
         return counters.busy.sum();
-    }
-
-    /** The counters, shared by the instances that restarts make. */
-    private static final class Counters {
-        final LongAdder upgraded = new LongAdder();
-        final LongAdder migrated = new LongAdder();
-        final LongAdder migratedIn = new LongAdder();
-        final LongAdder failed = new LongAdder();
-        final LongAdder refused = new LongAdder();
-        final LongAdder busy = new LongAdder();
     }
 }

@@ -331,7 +331,7 @@ public final class Engine {
         Peer peer = connection.peer();
         Link link = connection.link();
         Peer.Activation outcome = peer.activate(connection, hello, theirs, announcer::body);
-        Link.Activation activation = outcome.link();
+        LaneActivation activation = outcome.link();
         if (!activation.accepted()) {
             context.losses().reportLost(activation.lost(), "the streams with node '" + peer.nodeId
                     + "' disagreed; its fate is unknown");

@@ -1,15 +1,13 @@
 package io.etherware.services.network.internal;
 
-import io.etherware.core.message.Criticality;
 import io.etherware.core.message.Message;
-import io.etherware.core.message.MessageFormatException;
 import io.etherware.services.network.CloseReason;
 import java.io.IOException;
 import java.util.ArrayList;
 import java.util.List;
-import java.util.concurrent.TimeUnit;
 import java.util.concurrent.locks.Condition;
 import java.util.concurrent.locks.ReentrantLock;
+import java.util.function.Supplier;
 
 /**
  * One lane to another node, across connections: the messages waiting for it (by criticality),
@@ -24,14 +22,20 @@ import java.util.concurrent.locks.ReentrantLock;
  * does not know the stream (it restarted), the unacknowledged messages are reported to their
  * senders as undeliverable and numbering starts over.
  *
- * <p>Locking: {@link #lock} guards the outbound state and the connections' writer requests;
- * the {@link #inbound} stream's monitor guards it and is taken first when both are needed. Nothing
- * calls the kernel while holding {@link #lock}.
+ * <p>Parts. The link owns the connection in use and the lock, and coordinates its parts, each
+ * given what it needs when the link is made: {@link OutboundRules} (hops, encoding and overflow,
+ * on the sender's thread), {@link Outbox} (the waiting messages and what a writer's turn takes),
+ * {@link OutboundStream} and {@link InboundStream} (the two streams), {@link Resumption} (how they
+ * carry on over a new connection), {@link LaneOrder} (the NONE ordering across lanes),
+ * {@link OutputToken} (who writes: the writer thread or a sender directly) and {@link LaneLife}
+ * (whether the lane takes messages).
+ *
+ * <p>Locking: {@link #lock} guards the outbound state (the parts above) and the connections'
+ * writer requests; the {@link #inbound} stream's monitor guards it and is taken first when both
+ * are needed. The parts take no lock of their own ({@link OutputToken#release} takes this one).
+ * Nothing calls the kernel while holding {@link #lock}.
  */
 final class Link {
-
-    /** How often a writer looks again at a NONE message held for lane 0 (see {@link Generations}). */
-    private static final long BARRIER_POLL_NS = TimeUnit.MILLISECONDS.toNanos(1);
 
     final String nodeId;
     /** Which lane of the peer this is. */
@@ -43,43 +47,36 @@ final class Link {
     private final InboundStream inbound = new InboundStream();
 
     private final NetworkContext context;
-    /** Lane 0's link, whose earlier messages a NONE message of this lane waits for; null on lane 0. */
-    private final Link precedent;
-    /** This lane's unsettled messages by generation (guarded by lock). */
-    private final Generations generations = new Generations();
-    /** The latest generation a NONE message of lane 1 waits for, until settled; -1: none (guarded by lock). */
-    private long syncUpTo = -1;
+    private final OutboundRules rules;
     /** Lane 1's link, nudged when an acknowledgement here may let its held NONE message go; set once. */
     volatile Link follower;
     /** This lane's writer waits with a NONE message held for lane 0 at the head of its queue. */
     private volatile boolean holdsNone;
+    private volatile Connection active;
 
     // Guarded by lock.
-    private final OutboundQueue queue;
+    /** The NONE ordering across lanes. */
+    private final LaneOrder order;
     /** This node's stream to the peer on this lane. */
     private final OutboundStream out;
-    /** Someone (the writer thread, or a sender writing directly) owns the active connection's output. */
-    private volatile boolean writerBusy;
-    /** The writer has work but waits for a direct write to give the output back. */
-    private boolean writerWaitsForToken;
-    /** The queue's size, readable without the lock as a hint. */
-    private volatile int queuedHint;
-    private volatile Connection active;
-    private volatile long downSinceNs;
-    private boolean expired;
-    /** Expired and removed from the messenger's peers: a later connection gets a new Peer. */
-    private boolean retired;
-    private boolean closed;
-
+    /** The messages waiting for the writer. */
+    private final Outbox outbox;
+    private final Resumption resumption;
+    /** Who owns the active connection's output: the writer thread, or a sender writing directly. */
+    private final OutputToken token = new OutputToken(lock, work);
+    private final LaneLife life;
 
     Link(String nodeId, int lane, NetworkContext context, Link precedent) {
         this.nodeId = nodeId;
         this.lane = lane;
         this.context = context;
-        this.precedent = precedent;
+        this.rules = new OutboundRules(nodeId, context);
+        var generations = new Generations();
+        this.order = new LaneOrder(generations, precedent == null ? null : precedent.order);
         this.out = new OutboundStream(context.lanes().size() == 1, generations);
-        this.queue = new OutboundQueue(context.config().queueCapacity());
-        this.downSinceNs = NetworkContext.nowNs();
+        this.outbox = new Outbox(context.config().queueCapacity(), order, out);
+        this.resumption = new Resumption(out, inbound);
+        this.life = new LaneLife(nodeId, context);
     }
 
     // ---------------------------------------------------------------- sending
@@ -94,42 +91,23 @@ final class Link {
      * undeliverable notice to its sender.
      */
     void enqueue(Message message, long after) {
-        // A message that came from the network is relayed: one more hop than it had made.
-        int hops = message.origin() == null ? 0 : message.origin().hops() + 1;
-        if (hops > context.config().maxHops()) {
-            throw new IllegalStateException("message " + message.messageId() + " was already relayed " + (hops - 1)
-                    + " times (maxHops=" + context.config().maxHops() + "): the nodes' routes disagree");
-        }
+        int hops = rules.hops(message);
         Connection direct = active;
         // Encoded here, on the sender's thread: its size counts against the peer's byte bound.
-        byte[] xml = encode(message, direct);
+        byte[] xml = rules.encode(message, direct);
         OutboundQueue.Outcome outcome = null;
         InFlight written = null;
         lock.lock();
         try {
-            if (closed) {
-                throw new IllegalStateException("the network messenger of node '" + context.nodeId() + "' is closed");
-            }
-            if (expired) {
-                throw new IllegalStateException("node '" + nodeId + "' is unreachable: disconnected for more than "
-                        + TimeUnit.NANOSECONDS.toMillis(context.config().peerDownGraceNs()) + " ms");
-            }
+            life.checkTakesMessages();
             long maxBytes = context.config().maxQueuedBytesPerPeer();
-            var outgoing = new Outgoing(message, hops, xml, after, generations.take());
-            if (direct != null && active == direct && !writerBusy && queue.isEmpty()
-                    && !direct.requests.mustPrecedeMessages() && out.size() < context.config().windowMessages()
-                    && out.bytes() + xml.length <= maxBytes && out.lowRoomFor(outgoing, 0) && mayGo(outgoing)
-                    && direct.output().fitsDirectWrite(xml.length + Frame.DATA_OVERHEAD_BYTES)) {
-                writerBusy = true;
+            var outgoing = new Outgoing(message, hops, xml, after, order.take());
+            if (direct != null && active == direct && !token.isHeld()
+                    && outbox.mayGoDirectly(outgoing, direct, context.config().windowMessages(), maxBytes)) {
+                token.hold(true);
                 written = out.add(outgoing);
             } else {
-                outcome = queue.offer(outgoing, maxBytes - out.bytes());
-                queuedHint = queue.size();
-                switch (outcome) {
-                    case OutboundQueue.Outcome.Evicted evicted -> evicted.evicted().forEach(this::settle);
-                    case OutboundQueue.Outcome.Full full -> settle(outgoing);
-                    default -> { }
-                }
+                outcome = outbox.offer(outgoing, maxBytes);
                 if (!(outcome instanceof OutboundQueue.Outcome.Full)) {
                     work.signal();
                 }
@@ -141,46 +119,7 @@ final class Link {
             writeDirect(direct, written);
             return;
         }
-        switch (outcome) {
-            case OutboundQueue.Outcome.Evicted evicted -> {
-                for (Outgoing each : evicted.evicted()) {
-                    context.losses().dropped(each.message(), nodeId, "evicted by a more critical message from the full queue"
-                            + " to node '" + nodeId + "'");
-                }
-            }
-            case OutboundQueue.Outcome.Full full -> {
-                String why = "the queue to node '" + nodeId + "' is full (queueCapacity="
-                        + context.config().queueCapacity() + " messages, maxQueuedBytesPerPeer="
-                        + context.config().maxQueuedBytesPerPeer() + " bytes with those in flight) of messages at"
-                        + " least as critical as this one";
-                if (message.qos().criticality().compareTo(Criticality.LOW) <= 0) {
-                    context.losses().dropped(message, nodeId, why);
-                } else {
-                    throw new IllegalStateException(why);
-                }
-            }
-            default -> { }
-        }
-    }
-
-    /**
-     * The message's XML, within the frame limit of {@code connection}'s peer (or this node's own
-     * limit when none is connected), or an exception the kernel reports to the sender.
-     */
-    private byte[] encode(Message message, Connection connection) {
-        byte[] xml;
-        try {
-            xml = context.codec().encode(message);
-        } catch (MessageFormatException e) {
-            throw new IllegalStateException("message " + message.messageId() + " does not encode: " + e.getMessage(), e);
-        }
-        int limit = connection != null ? connection.output().peerMaxFrameBytes() : context.config().maxFrameBytes();
-        if (xml.length + Frame.DATA_OVERHEAD_BYTES > limit) {
-            throw new IllegalStateException("message " + message.messageId() + " is a frame of "
-                    + (xml.length + Frame.DATA_OVERHEAD_BYTES) + " bytes, over the " + limit
-                    + " bytes node '" + nodeId + "' accepts");
-        }
-        return xml;
+        rules.overflowed(message, outcome);
     }
 
     private void writeDirect(Connection connection, InFlight entry) {
@@ -196,23 +135,7 @@ final class Link {
 
     /** Whoever owned the output gives it back; a writer waiting for it may take its turn. */
     void endTurn() {
-        lock.lock();
-        try {
-            writerBusy = false;
-            if (writerWaitsForToken) {
-                // Only then: waking an idle writer after every direct write would cost a thread
-                // switch per message.
-                writerWaitsForToken = false;
-                work.signalAll();
-            }
-        } finally {
-            lock.unlock();
-        }
-    }
-
-    private void awaitToken() throws InterruptedException {
-        writerWaitsForToken = true;
-        work.await();
+        token.release();
     }
 
     // ---------------------------------------------------------------- connections
@@ -229,68 +152,29 @@ final class Link {
         }
     }
 
-    /** The outcome of {@link #activate}. */
-    /**
-     * @param refusal why the connection is refused for a protocol error, or null (a duplicate, or
-     *                the messenger closes)
-     */
-    record Activation(boolean accepted, Connection loser, List<InFlight> lost, String refusal) {
-    }
-
     /**
      * Makes {@code candidate}, handshaken, this peer's connection, unless a connection that wins
-     * the one-connection rule is already in use. Resumes or restarts both streams.
-     *
-     * A peer claiming more of our stream than was sent is refused, and our stream starts afresh.
+     * the one-connection rule is already in use. Resumes or restarts both streams (see
+     * {@link Resumption#resume}).
      */
-    Activation activate(Connection candidate, Frame.Resume theirs, java.util.function.Supplier<byte[]> announceBody) {
+    LaneActivation activate(Connection candidate, Frame.Resume theirs, Supplier<byte[]> announceBody) {
         synchronized (inbound) {
             lock.lock();
             try {
-                if (closed || retired) {
-                    return new Activation(false, candidate, List.of(), null);
+                if (!life.mayConnect()) {
+                    return new LaneActivation(false, candidate, List.of(), null);
                 }
-                Connection current = active;
-                Connection loser = null;
-                if (current != null && current != candidate) {
-                    if (!candidate.isPreferredOver(current)) {
-                        return new Activation(false, candidate, List.of(), null);
-                    }
-                    loser = current;
-                }
-                List<InFlight> lost = List.of();
-                if (theirs.knownStreamId() == out.streamId()) {
-                    // A RESUME that contradicts the stream: a restart raced a second connection, or
-                    // a connection in the peer's name acknowledged what it now denies (an impostor,
-                    // or a bug).
-                    String refusal = out.resumeRefusal(theirs.receivedCount());
-                    if (refusal != null) {
-                        // With a connection in use, the candidate is the one that lies (an
-                        // impostor, on a plain link): refuse it and leave the stream alone.
-                        // Without one, start the stream afresh so the next connection agrees.
-                        List<InFlight> unknown = current != null && current != candidate ? List.of() : out.reset();
-                        return new Activation(false, candidate, unknown, refusal);
-                    }
-                    out.acknowledge(theirs.receivedCount());
-                    candidate.requests.resend(out.unacknowledged());
-                } else {
-                    // The peer does not know our stream: what it did not acknowledge is of unknown
-                    // fate; the peer starts our stream from 0 (it adopts its id from our RESUME).
-                    lost = out.restartNumbering();
-                    candidate.requests.resend(List.of());
-                }
-                inbound.resume(theirs.streamId());
-                if (loser != null) {
-                    loser.requests.requestBye(CloseReason.DUPLICATE, "replaced by the connection dialed by '"
-                            + candidate.initiatorId() + "'");
+                LaneActivation activation = resumption.resume(active, candidate, theirs);
+                if (!activation.accepted()) {
+                    return activation;
                 }
                 active = candidate;
-                expired = false;
+                life.connected();
                 out.restartClock();
                 // Read under the lock: an announcement published meanwhile finds this connection active.
                 candidate.requests.announce(announceBody.get());
                 work.signalAll();
-                return new Activation(true, loser, lost, null);
+                return activation;
             } finally {
                 lock.unlock();
             }
@@ -308,7 +192,7 @@ final class Link {
                 return false;
             }
             active = null;
-            downSinceNs = NetworkContext.nowNs();
+            life.down();
             work.signalAll();
             return true;
         } finally {
@@ -336,30 +220,28 @@ final class Link {
         try {
             while (true) {
                 if (active != connection) {
-                    if (writerBusy) {
-                        awaitToken();
+                    if (token.isHeld()) {
+                        token.await();
                         continue;
                     }
                     WriterTurn last = connection.requests.takeBye();
-                    writerBusy = last != null;
+                    token.hold(last != null);
                     return last;
                 }
-                Outgoing head = queue.peek();
-                boolean held = head != null && !mayGo(head);
+                Outgoing head = outbox.peek();
+                boolean held = head != null && !order.mayGo(head);
                 holdsNone = held;
                 boolean sendable = head != null && out.size() < window && out.lowRoomFor(head, 0) && !held;
                 if (!connection.requests.hasRequests() && !sendable) {
                     long waitNs = connection.output().heartbeatDueNs() - NetworkContext.nowNs();
                     if (waitNs > 0) {
-                        // A NONE message held for lane 0 is looked at again every millisecond:
-                        // lane 0 never signals this lane, so its threads never take this lock.
-                        work.awaitNanos(held ? Math.min(waitNs, BARRIER_POLL_NS) : waitNs);
+                        work.awaitNanos(LaneOrder.waitNs(waitNs, held));
                         continue;
                     }
                     connection.requests.requestHeartbeat();
                 }
-                if (writerBusy) {
-                    awaitToken(); // a sender is writing directly; it signals when done
+                if (token.isHeld()) {
+                    token.await(); // a sender is writing directly; it signals when done
                     continue;
                 }
                 break;
@@ -368,26 +250,8 @@ final class Link {
             // New messages only once every message to send again is out: the peer expects the
             // stream in order.
             int room = connection.requests.mustPrecedeMessages() ? 0 : Math.min(batch, window - out.size());
-            long lowChosen = 0;
-            while (turn.fresh.size() < room) {
-                Outgoing next = queue.peek();
-                if (next == null || !out.lowRoomFor(next, lowChosen) || !mayGo(next)) {
-                    break; // the rest are NONE or LOW too: they wait for acknowledgements
-                }
-                if (next.isSheddable()) {
-                    lowChosen += next.xml().length;
-                }
-                turn.fresh.add(queue.poll());
-            }
-            queuedHint = queue.size();
-            if (syncUpTo >= 0) {
-                if (generations.settledUpTo(syncUpTo)) {
-                    syncUpTo = -1;
-                } else if (!turn.fresh.isEmpty() || !turn.resend.isEmpty()) {
-                    turn.sync = true; // more of what the NONE message waits for goes out now
-                }
-            }
-            writerBusy = true;
+            outbox.fill(turn, room);
+            token.hold(true);
             return turn;
         } finally {
             lock.unlock();
@@ -402,10 +266,9 @@ final class Link {
     List<InFlight> assign(Connection connection, List<Outgoing> encoded, List<Outgoing> givenUp) {
         lock.lock();
         try {
-            givenUp.forEach(this::settle);
+            givenUp.forEach(order::settle);
             if (active != connection) {
-                queue.pushBack(encoded);
-                queuedHint = queue.size();
+                outbox.pushBack(encoded);
                 work.signalAll();
                 return null;
             }
@@ -426,11 +289,10 @@ final class Link {
     long closeGeneration() {
         lock.lock();
         try {
-            long closed = generations.close();
-            if (!generations.settledUpTo(closed)) {
+            long closed = order.close();
+            if (order.awaitSync(closed)) {
                 // Its messages are settled when the peer acknowledges them, which it may put off
                 // for up to 10 ms: a SYNC after them asks it to at once.
-                syncUpTo = closed;
                 Connection connection = active;
                 if (connection != null) {
                     connection.requests.requestSync();
@@ -441,21 +303,6 @@ final class Link {
         } finally {
             lock.unlock();
         }
-    }
-
-    /** Whether every message of {@code generation} and before is settled here. Lock-free. */
-    boolean hasSettled(long generation) {
-        return generations.settledUpTo(generation);
-    }
-
-    /** Whether a NONE message waiting for lane 0 may go (lock held). */
-    private boolean mayGo(Outgoing next) {
-        return next.after() < 0 || precedent == null || precedent.hasSettled(next.after());
-    }
-
-    /** {@code outgoing} leaves this lane for good without having been written (lock held). */
-    private void settle(Outgoing outgoing) {
-        generations.settle(outgoing.generation());
     }
 
     /**
@@ -524,7 +371,7 @@ final class Link {
         if (out.isEmpty()) {
             connection.output().allDataAcknowledged();
         }
-        if (!queue.isEmpty() && (windowWasFull && out.size() < window || lowWasFull)) {
+        if (!outbox.isEmpty() && (windowWasFull && out.size() < window || lowWasFull)) {
             work.signal(); // the writer waited for room in the window, or for LOW room
         }
     }
@@ -564,7 +411,7 @@ final class Link {
 
     /** Since when no connection carries this lane (meaningful while {@link #active()} is null). */
     long downSinceNs() {
-        return downSinceNs;
+        return life.downSinceNs();
     }
 
     /**
@@ -576,12 +423,7 @@ final class Link {
     List<Outgoing> expire() {
         lock.lock();
         try {
-            if (active != null || retired || closed) {
-                return null;
-            }
-            expired = true; // perhaps already, alone: what was put back since is given up now
-            retired = true;
-            return abandonAll();
+            return active != null || !life.retire() ? null : abandonAll();
         } finally {
             lock.unlock();
         }
@@ -596,11 +438,9 @@ final class Link {
     List<Outgoing> expireAlone(long nowNs) {
         lock.lock();
         try {
-            if (active != null || closed || nowNs - downSinceNs < context.config().peerDownGraceNs()
-                    || expired && queue.isEmpty() && out.isEmpty()) {
-                return null; // (messages a replaced writer put back after it expired are given up too)
+            if (active != null || !life.expireAlone(nowNs, outbox.isEmpty() && out.isEmpty())) {
+                return null;
             }
-            expired = true;
             List<Outgoing> lost = abandonAll();
             return lost.isEmpty() ? null : lost;
         } finally {
@@ -612,7 +452,7 @@ final class Link {
     List<Outgoing> close() {
         lock.lock();
         try {
-            closed = true;
+            life.close();
             work.signalAll();
             return abandonAll();
         } finally {
@@ -621,14 +461,11 @@ final class Link {
     }
 
     private List<Outgoing> abandonAll() {
-        var lost = new ArrayList<Outgoing>(out.size() + queue.size());
+        var lost = new ArrayList<Outgoing>(out.size() + outbox.size());
         for (InFlight entry : out.reset()) {
             lost.add(entry.outgoing());
         }
-        List<Outgoing> waited = queue.drain();
-        waited.forEach(this::settle);
-        lost.addAll(waited);
-        queuedHint = 0;
+        lost.addAll(outbox.abandon());
         return lost;
     }
 
@@ -636,7 +473,7 @@ final class Link {
     int[] backlog() {
         lock.lock();
         try {
-            return new int[] {queue.size(), out.size()};
+            return new int[] {outbox.size(), out.size()};
         } finally {
             lock.unlock();
         }

@@ -81,9 +81,9 @@ final class Peer {
     synchronized Activation activate(Connection candidate, Frame.Hello hello, Frame.Resume theirs,
                                      java.util.function.Supplier<byte[]> announceBody) {
         if (retired) {
-            return new Activation(new Link.Activation(false, candidate, List.of(), null), false);
+            return new Activation(new LaneActivation(false, candidate, List.of(), null), false);
         }
-        Link.Activation activation = links[candidate.lane()].activate(candidate, theirs, announceBody);
+        LaneActivation activation = links[candidate.lane()].activate(candidate, theirs, announceBody);
         boolean restarted = false;
         if (activation.accepted()) {
             restarted = incarnation != 0 && incarnation != hello.incarnation();
@@ -96,7 +96,7 @@ final class Peer {
     }
 
     /** The outcome of {@link #activate}. */
-    record Activation(Link.Activation link, boolean restarted) {
+    record Activation(LaneActivation link, boolean restarted) {
     }
 
     /**
