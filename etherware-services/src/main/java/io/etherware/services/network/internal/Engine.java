@@ -61,7 +61,7 @@ public final class Engine {
     private final List<Dialer> dialers = new CopyOnWriteArrayList<>();
     private final ConcurrentLinkedQueue<Profile> toReconcile = new ConcurrentLinkedQueue<>();
     private final ScheduledThreadPoolExecutor control;
-    private final Object stateChanged = new Object();
+    private final StateSignal stateChanged = new StateSignal();
     private final NetworkContext context;
     private final ConnectionEvents events = new Events();
     private final Admission admission;
@@ -194,7 +194,7 @@ public final class Engine {
             Thread.currentThread().interrupt();
         }
         log.info("node {}: network messenger closed: {}", nodeId, stats());
-        signalStateChanged();
+        stateChanged.signal();
     }
 
     private boolean hasBacklog() {
@@ -286,20 +286,20 @@ public final class Engine {
 
         @Override
         public void stateChanged() {
-            signalStateChanged();
+            stateChanged.signal();
         }
 
         @Override
         public void announced(Peer peer, long incarnation, Frame.Announce announce) {
             peer.onAnnounce(incarnation, announce.version(), () -> routes.announce(peer, announce.profiles()));
-            signalStateChanged();
+            stateChanged.signal();
         }
 
         @Override
         public void peerShutDown(Peer peer) {
             log.info("node {}: node '{}' is shutting down: unrouting its profiles", nodeId, peer.nodeId);
             routes.forget(peer);
-            signalStateChanged();
+            stateChanged.signal();
         }
 
         @Override
@@ -321,7 +321,7 @@ public final class Engine {
                 connection.dialer().ended(connection.isActivated(), reason);
             }
             if (wasActive) {
-                signalStateChanged();
+                stateChanged.signal();
             }
         }
     }
@@ -366,7 +366,7 @@ public final class Engine {
         }
         context.losses().reportLost(activation.lost(), "node '" + peer.nodeId + "' restarted before acknowledging it;"
                 + " it may or may not have been handled");
-        signalStateChanged();
+        stateChanged.signal();
         return true;
     }
 
@@ -468,7 +468,7 @@ public final class Engine {
         routes.forget(peer);
         peers.remove(peer.nodeId, peer);
         reportLost(lost, peer, "unrouting its profiles");
-        signalStateChanged();
+        stateChanged.signal();
     }
 
     /** Logs and reports to their senders messages given up for a peer unreachable for the grace period. */
@@ -520,12 +520,12 @@ public final class Engine {
 
     /** Waits until every lane to {@code peerId} is connected; false on timeout. */
     public boolean awaitConnected(String peerId, Duration timeout) throws InterruptedException {
-        return await(timeout, () -> isConnected(peerId));
+        return stateChanged.await(timeout, () -> isConnected(peerId));
     }
 
     /** Waits until {@code profile} resolves on this node; false on timeout. */
     public boolean awaitResolvable(Profile profile, Duration timeout) throws InterruptedException {
-        return await(timeout, () -> {
+        return stateChanged.await(timeout, () -> {
             try {
                 kernel.registry().resolve(profile);
                 return true;
@@ -533,27 +533,6 @@ public final class Engine {
                 return false;
             }
         });
-    }
-
-    private boolean await(Duration timeout, java.util.function.BooleanSupplier condition) throws InterruptedException {
-        long deadlineNs = nowNs() + timeout.toNanos();
-        synchronized (stateChanged) {
-            while (!condition.getAsBoolean()) {
-                long leftNs = deadlineNs - nowNs();
-                if (leftNs <= 0) {
-                    return false;
-                }
-                // Bounded wait: a change signalled just before we waited is seen on the next round.
-                stateChanged.wait(Math.max(1, Math.min(TICK_MS, TimeUnit.NANOSECONDS.toMillis(leftNs))));
-            }
-            return true;
-        }
-    }
-
-    void signalStateChanged() {
-        synchronized (stateChanged) {
-            stateChanged.notifyAll();
-        }
     }
 
     // ---------------------------------------------------------------- shared parts
