@@ -35,8 +35,8 @@ import org.slf4j.LoggerFactory;
 /**
  * The machinery behind {@link io.etherware.services.network.NetworkMessenger}: the listening
  * socket and its acceptor thread, the dialers, the peers and their connections, the routes, the
- * announcements of this node's profiles, and a control thread that ticks every
- * {@value #TICK_MS} ms for redialing, delayed acknowledgements, time probes and expiry.
+ * announcements of this node's profiles, and a control thread that runs a {@link ControlTick}
+ * every {@value #TICK_MS} ms for redialing, delayed acknowledgements, time probes and expiry.
  *
  * <p>Threads (all platform threads): one acceptor, one control, and per connection a reader and
  * a writer. Senders never block: they queue at a {@link Peer}.
@@ -47,7 +47,6 @@ public final class Engine {
 
     private static final Logger log = LoggerFactory.getLogger("io.etherware.services.network.NetworkMessenger");
     static final long TICK_MS = 10;
-    private static final long BURST_SPACING_NS = TimeUnit.MILLISECONDS.toNanos(20);
     private static final long CLOSE_DRAIN_NS = TimeUnit.SECONDS.toNanos(1);
 
     private final Kernel kernel;
@@ -65,6 +64,7 @@ public final class Engine {
     private final NetworkContext context;
     private final ConnectionEvents events = new Events();
     private final Admission admission;
+    private final ControlTick tick;
     private ServerSocket server;
     private Thread acceptor;
     private volatile boolean closed;
@@ -91,6 +91,7 @@ public final class Engine {
         this.context = new NetworkContext(nodeId, incarnation, kernel, config, counters, networkTime,
                 new Losses(kernel, counters), lanes, control, config.codecFor(kernel));
         this.admission = new Admission(context);
+        this.tick = new ControlTick(context, dialers, peers, toReconcile, routes, stateChanged);
     }
 
     /** The policy the reader and writer threads of {@code lane} ask for. */
@@ -129,7 +130,7 @@ public final class Engine {
         for (InetSocketAddress address : config.peers()) {
             addDialers(address);
         }
-        control.scheduleWithFixedDelay(this::tick, 0, TICK_MS, TimeUnit.MILLISECONDS);
+        control.scheduleWithFixedDelay(tick, 0, TICK_MS, TimeUnit.MILLISECONDS);
         log.info("node {}: network messenger listening on {}, dialing {}", nodeId, localAddress(), config.peers());
     }
 
@@ -401,88 +402,6 @@ public final class Engine {
     /** See {@link RouteTable#adopt}. */
     public void adoptRoute(Profile profile, RemoteRoute route, String nodeId) {
         routes.adopt(profile, route, nodeId);
-    }
-
-    // ---------------------------------------------------------------- the control thread
-
-    private void tick() {
-        try {
-            long nowNs = nowNs();
-            for (Dialer dialer : dialers) {
-                dialer.maybeDial(nowNs);
-            }
-            for (Peer peer : peers.values()) {
-                boolean up = false;
-                for (Link link : peer.links()) {
-                    up |= checkLink(link, nowNs);
-                }
-                if (!up) {
-                    expireIfDown(peer, nowNs);
-                } else {
-                    for (Link link : peer.links()) {
-                        reportLost(link.expireAlone(nowNs), peer, "its lane " + link.lane);
-                    }
-                }
-            }
-            Profile profile;
-            while ((profile = toReconcile.poll()) != null) {
-                routes.reconcile(profile);
-            }
-        } catch (RuntimeException e) {
-            log.error("node {}: network control tick failed; continuing", nodeId, e);
-        }
-    }
-
-    /**
-     * A connected lane's periodic duties: closes it if the peer reads nothing, asks for owed
-     * acknowledgements, and (lane 0) time probes. Returns whether the lane is connected.
-     */
-    private boolean checkLink(Link link, long nowNs) {
-        Connection active = link.active();
-        if (active == null) {
-            return false;
-        }
-        long stalledNs = link.unreadForNs(nowNs);
-        if (stalledNs > config.heartbeatTimeoutNs()) {
-            active.abort(CloseReason.NOT_READING, "node '" + link.nodeId + "' acknowledged nothing of what was"
-                    + " written to it on lane " + link.lane + " for " + TimeUnit.NANOSECONDS.toMillis(stalledNs) + " ms");
-            return true;
-        }
-        if (active.output().owesAck()) {
-            active.requestAck();
-        }
-        if (link.lane == 0 && nowNs - active.nextProbeNs >= 0) {
-            active.requestProbe();
-            active.probesSent++;
-            active.nextProbeNs = nowNs + (active.probesSent < config.timeProbeBurst() ? BURST_SPACING_NS
-                    : config.timeProbeIntervalNs());
-        }
-        return true;
-    }
-
-    private void expireIfDown(Peer peer, long nowNs) {
-        List<Outgoing> lost = peer.expireIfDown(nowNs);
-        if (lost == null) {
-            return;
-        }
-        routes.forget(peer);
-        peers.remove(peer.nodeId, peer);
-        reportLost(lost, peer, "unrouting its profiles");
-        stateChanged.signal();
-    }
-
-    /** Logs and reports to their senders messages given up for a peer unreachable for the grace period. */
-    private void reportLost(List<Outgoing> lost, Peer peer, String what) {
-        if (lost == null) {
-            return;
-        }
-        long graceMs = TimeUnit.NANOSECONDS.toMillis(config.peerDownGraceNs());
-        log.warn("node {}: node '{}' has been unreachable for over {} ms ({}): reporting {} waiting messages as"
-                + " undeliverable", nodeId, peer.nodeId, graceMs, what, lost.size());
-        for (Outgoing each : lost) {
-            context.losses().lost(each.message(), "node '" + peer.nodeId + "' has been unreachable for over "
-                    + graceMs + " ms");
-        }
     }
 
     // ---------------------------------------------------------------- status
