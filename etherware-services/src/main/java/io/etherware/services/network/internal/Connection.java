@@ -1,11 +1,6 @@
 package io.etherware.services.network.internal;
 
-import io.etherware.core.message.Message;
-import io.etherware.core.message.MessageFormatException;
-import io.etherware.core.message.Origin;
 import io.etherware.services.network.CloseReason;
-import io.etherware.services.time.TimeSample;
-import java.io.EOFException;
 import java.io.IOException;
 import java.io.InputStream;
 import java.net.Socket;
@@ -15,9 +10,10 @@ import javax.net.ssl.SSLException;
 
 /**
  * One TCP connection to another node: the handshake, then a reader (the thread that ran the
- * handshake) and a writer thread. The reader hands messages to the kernel in stream order and
- * answers control frames through the writer; the writer sends what its lane's {@link Link} has, most
- * critical first, and flushes once per turn, so a burst leaves in few system calls.
+ * handshake) and a writer thread. The reader runs the {@link ConnectionInput}, which hands messages
+ * to the kernel in stream order and answers control frames through the writer; the writer sends
+ * what its lane's {@link Link} has, most critical first, and flushes once per turn, so a burst
+ * leaves in few system calls.
  *
  * <p>A dead or slow peer blocks only this connection's two threads; senders only ever queue.
  *
@@ -26,16 +22,11 @@ import javax.net.ssl.SSLException;
  */
 final class Connection implements Runnable {
 
-    private static final org.slf4j.Logger log =
-            org.slf4j.LoggerFactory.getLogger("io.etherware.services.network.NetworkMessenger");
-
     /** How long a closing connection waits for its writer to say BYE, and drains the input. */
     private static final long CLOSE_GRACE_MS = 500;
     /** Most messages a writer takes in one turn. */
     private static final int BATCH = 64;
     private static final int DIRECT_BUDGET_MAX_BYTES = 64 * 1024;
-    /** A receiver acknowledges at least every this many bytes of messages. */
-    static final int ACK_EVERY_BYTES = 64 * 1024;
 
     private final NetworkContext context;
     private final ConnectionEvents events;
@@ -64,9 +55,6 @@ final class Connection implements Runnable {
 
     /** The output side, once the handshake has written its frames. */
     private volatile ConnectionOutput output;
-
-    /** Reader thread only: message bytes received since the last acknowledgement was asked for. */
-    private long bytesSinceAckRequest;
 
     // Control thread only.
     long nextProbeNs;
@@ -115,7 +103,8 @@ final class Connection implements Runnable {
                 + laneName());
         writerThread = writing;
         writing.start();
-        readLoop();
+        new ConnectionInput(this, context, events, reader, peer, link, lane, hello.incarnation(), authenticatedId != null,
+                output).readLoop();
     }
 
     private void handshake() throws IOException {
@@ -174,146 +163,6 @@ final class Connection implements Runnable {
         socket.setSoTimeout((int) Math.max(1, TimeUnit.NANOSECONDS.toMillis(context.config().heartbeatTimeoutNs())));
     }
 
-    private void readLoop() {
-        context.lanes().get(lane).configureCurrent();
-        try {
-            while (!closing) {
-                switch (reader.next()) {
-                    case Frame.Data data -> onData(data);
-                    case Frame.Ack ack -> link.onAck(this, ack.count());
-                    case Frame.Heartbeat heartbeat -> { }
-                    case Frame.Sync sync -> requestAck(); // every DATA before it is delivered
-                    case Frame.Announce announced -> {
-                        if (link.active() == this) {
-                            events.announced(peer, hello.incarnation(), announced);
-                        }
-                    }
-                    case Frame.TimeRequest request -> requestTimeReply(request.t1(), context.kernel().clock().epochNanos());
-                    case Frame.TimeReply reply -> context.networkTime().onExchange(peer.nodeId,
-                            new TimeSample(reply.t1(), reply.t2(), reply.t3(), context.kernel().clock().epochNanos()));
-                    case Frame.Reject rejected -> {
-                        Outgoing refused = link.onReject(this, rejected.seq());
-                        if (refused != null) {
-                            context.losses().lost(refused.message(), "node '" + peer.nodeId + "' refused it: " + rejected.reason());
-                        }
-                    }
-                    case Frame.Bye goodbye -> {
-                        if (CloseReason.ofCode(goodbye.code()) == CloseReason.SHUTDOWN && link.active() == this) {
-                            events.peerShutDown(peer);
-                        }
-                        close(CloseReason.PEER_CLOSED, "node '" + peer.nodeId + "' closed the connection: "
-                                + CloseReason.ofCode(goodbye.code()) + ": " + goodbye.text());
-                        return;
-                    }
-                    case Frame.Hello unexpected -> throw new ProtocolException(CloseReason.MALFORMED_FRAME, "HELLO again");
-                    case Frame.Resume unexpected -> throw new ProtocolException(CloseReason.MALFORMED_FRAME,
-                            "RESUME after the handshake");
-                }
-            }
-        } catch (RefusedMessageException e) {
-            link.lock.lock();
-            try {
-                requests.reject(new Frame.Reject(e.seq, e.getMessage()));
-            } finally {
-                link.lock.unlock();
-            }
-            close(e.reason(), e.getMessage());
-        } catch (ProtocolException e) {
-            close(e.reason(), e.getMessage());
-            if (e instanceof StreamResetException reset) {
-                context.losses().reportLost(reset.lost, "the streams with node '" + peer.nodeId
-                        + "' disagreed; its fate is unknown");
-            }
-        } catch (SocketTimeoutException e) {
-            close(CloseReason.HEARTBEAT_TIMEOUT, "nothing from node '" + peer.nodeId + "' for "
-                    + TimeUnit.NANOSECONDS.toMillis(context.config().heartbeatTimeoutNs()) + " ms");
-        } catch (EOFException e) {
-            close(CloseReason.PEER_CLOSED, "node '" + peer.nodeId + "' closed the connection");
-        } catch (IOException e) {
-            close(closing ? CloseReason.SHUTDOWN : CloseReason.IO_ERROR, "reading from node '" + peer.nodeId
-                    + "' failed: " + e);
-        }
-    }
-
-    /**
-     * A message frame refused for good (its XML does not decode, or it lies about its origin): its
-     * sender hears of it by REJECT, and the connection closes.
-     */
-    private static final class RefusedMessageException extends ProtocolException {
-        final long seq;
-
-        RefusedMessageException(long seq, CloseReason reason, String text, Throwable cause) {
-            super(reason, "message frame " + seq + " " + text, cause);
-            this.seq = seq;
-        }
-    }
-
-    private void onData(Frame.Data data) throws ProtocolException {
-        link.onAck(this, data.ack());
-        awaitInboundRoom(data.xml().length);
-        boolean delivered = link.deliverInOrder(this, data.seq(), () -> {
-            Message message;
-            try {
-                message = context.codec().decode(data.xml());
-            } catch (MessageFormatException e) {
-                throw new RefusedMessageException(data.seq(), CloseReason.MALFORMED_MESSAGE, "does not decode: "
-                        + e.getMessage(), e);
-            }
-            deliverLocally(context.networkTime().toLocal(peer.nodeId, message.withOrigin(originOf(data, message))));
-        });
-        if (!delivered) {
-            if (link.active() != this) {
-                return; // replaced: the new connection carries the stream on, and closes this one
-            }
-            context.counters().duplicates.increment();
-        } else {
-            bytesSinceAckRequest += data.xml().length;
-            if (link.inboundCount() - output.lastAckSent() >= context.config().windowMessages() / 4
-                    || bytesSinceAckRequest >= ACK_EVERY_BYTES) {
-                // By count for small messages, by bytes for large ones: a sender keeps at most
-                // OutboundStream.LOW_IN_FLIGHT_BYTES of LOW messages (one lane) unacknowledged.
-                bytesSinceAckRequest = 0;
-                requestAck();
-            }
-        }
-    }
-
-    /**
-     * Where a message came from, from this connection's node, never from the message alone: sent
-     * directly (hops 0), its id must name this connection's node; relayed, the relay vouches for
-     * the origin its id names (the rule is in {@link Origin}).
-     */
-    private Origin originOf(Frame.Data data, Message message) throws RefusedMessageException {
-        String named = message.messageId().nodeId();
-        if (data.hops() == 0) {
-            if (!named.equals(peer.nodeId)) {
-                throw new RefusedMessageException(data.seq(), CloseReason.ORIGIN_MISMATCH, "has id " + message.messageId()
-                        + " of node '" + named + "' but was sent directly by node '" + peer.nodeId
-                        + "': a node may only send messages under its own id", null);
-            }
-            return new Origin(peer.nodeId, peer.nodeId, 0, authenticatedId != null, data.xml().length);
-        }
-        return new Origin(named, peer.nodeId, data.hops(), authenticatedId != null, data.xml().length);
-    }
-
-    /**
-     * Waits, not reading, while this peer's messages held in the kernel's queues and this one
-     * would exceed {@link io.etherware.services.network.NetworkConfig#maxInboundBytesPerPeer} (half
-     * of it on lane 1, so LOW messages never take the room of HIGH ones): the peer's writes then
-     * back up over TCP, and a peer that floods a slow component is slowed down instead of filling
-     * the heap. Polls every millisecond; ends when the connection closes.
-     */
-    private void awaitInboundRoom(int bytes) {
-        long max = context.config().maxInboundBytesPerPeer() / (lane == 0 ? 1 : 2);
-        if (context.kernel().queuedBytesFrom(peer.nodeId) + bytes <= max) {
-            return;
-        }
-        context.counters().inboundPauses.increment();
-        while (!closing && context.kernel().queuedBytesFrom(peer.nodeId) + bytes > max) {
-            java.util.concurrent.locks.LockSupport.parkNanos(1_000_000);
-        }
-    }
-
     // ---------------------------------------------------------------- the writer thread
 
     private void writeLoop() {
@@ -346,11 +195,25 @@ final class Connection implements Runnable {
 
     // ---------------------------------------------------------------- writer requests (under link.lock)
 
-    private void requestTimeReply(long t1, long t2) {
+    /** Asks the writer to answer a time request that arrived at {@code t2}. */
+    void requestTimeReply(long t1, long t2) {
         link.lock.lock();
         try {
             requests.timeReply(t1, t2);
             link.work.signal();
+        } finally {
+            link.lock.unlock();
+        }
+    }
+
+    /**
+     * Asks the writer to send REJECT for a message frame refused for good; not signalled: the
+     * close that follows wakes the writer.
+     */
+    void requestReject(Frame.Reject reject) {
+        link.lock.lock();
+        try {
+            requests.reject(reject);
         } finally {
             link.lock.unlock();
         }
@@ -424,24 +287,17 @@ final class Connection implements Runnable {
         return context.lanes().size() == 1 ? peer.nodeId : peer.nodeId + "-lane" + lane;
     }
 
-    /** Hands a message from the peer, its origin set, to the kernel (the reader thread). */
-    private void deliverLocally(Message message) {
-        try {
-            context.kernel().send(message);
-            context.counters().received.increment();
-        } catch (RuntimeException e) {
-            context.counters().undeliverable.increment();
-            log.warn("node {}: the kernel refused message {} to '{}' from the network: {}", context.nodeId(),
-                    message.messageId(), message.profile(), e.toString());
-        }
-    }
-
     String remote() {
         return remote;
     }
 
     boolean isActivated() {
         return activated;
+    }
+
+    /** Whether the connection is closing: its threads stop at the next frame or wait. */
+    boolean isClosing() {
+        return closing;
     }
 
     /**
