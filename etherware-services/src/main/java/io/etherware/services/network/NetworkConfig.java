@@ -3,7 +3,6 @@ package io.etherware.services.network;
 import io.etherware.core.codec.MessageCodec;
 import io.etherware.rt.platform.CpuSet;
 import io.etherware.rt.platform.ThreadPolicy;
-import io.etherware.rt.scheduling.ThreadSchedulingRule;
 import io.etherware.services.time.NetworkTime;
 import java.net.InetAddress;
 import java.net.InetSocketAddress;
@@ -114,43 +113,18 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
         Objects.requireNonNull(listenAddress, "listenAddress=null: e.g. listen(new InetSocketAddress(\"0.0.0.0\", 7400))");
         peers = List.copyOf(Objects.requireNonNull(peers, "peers=null"));
         Objects.requireNonNull(connectionFactory, "connectionFactory=null: use ConnectionFactory.plain()");
-        requireRange("maxFrameBytes", maxFrameBytes, MIN_FRAME_BYTES, 256 << 20);
-        requireRange("queueCapacity", queueCapacity, 1, 10_000_000);
-        requireRange("windowMessages", windowMessages, 4, 1 << 20);
-        requirePositive("heartbeatIntervalNs", heartbeatIntervalNs);
-        if (heartbeatTimeoutNs < 2 * heartbeatIntervalNs) {
-            throw new IllegalArgumentException("heartbeatTimeoutNs=" + heartbeatTimeoutNs + " must be at least twice"
-                    + " heartbeatIntervalNs=" + heartbeatIntervalNs + ", or a healthy idle peer looks dead");
-        }
-        requirePositive("handshakeTimeoutNs", handshakeTimeoutNs);
-        requirePositive("connectTimeoutNs", connectTimeoutNs);
-        requirePositive("reconnectInitialBackoffNs", reconnectInitialBackoffNs);
-        if (reconnectMaxBackoffNs < reconnectInitialBackoffNs) {
-            throw new IllegalArgumentException("reconnectMaxBackoffNs=" + reconnectMaxBackoffNs
-                    + " must be at least reconnectInitialBackoffNs=" + reconnectInitialBackoffNs);
-        }
-        if (!(reconnectJitter >= 0 && reconnectJitter < 1)) {
-            throw new IllegalArgumentException("reconnectJitter=" + reconnectJitter + " must be in [0, 1)");
-        }
-        requirePositive("peerDownGraceNs", peerDownGraceNs);
-        requirePositive("timeProbeIntervalNs", timeProbeIntervalNs);
-        requireRange("timeProbeBurst", timeProbeBurst, 0, 64);
-        requireRange("timeWindowSize", timeWindowSize, 1, 1024);
-        requireRange("maxConnections", maxConnections, 1, 100_000);
-        requireRange("maxHops", maxHops, 0, 32);
-        requireRange("maxPendingHandshakes", maxPendingHandshakes, 1, 100_000);
-        requireRange("maxQueuedBytesPerPeer", maxQueuedBytesPerPeer, 2L * maxFrameBytes, 1L << 40);
-        requireRange("maxInboundBytesPerPeer", maxInboundBytesPerPeer, 2L * maxFrameBytes, 1L << 40);
+        NetworkConfigChecks.frames(maxFrameBytes, queueCapacity, windowMessages);
+        NetworkConfigChecks.heartbeats(heartbeatIntervalNs, heartbeatTimeoutNs);
+        NetworkConfigChecks.dialing(handshakeTimeoutNs, connectTimeoutNs, reconnectInitialBackoffNs,
+                reconnectMaxBackoffNs, reconnectJitter, peerDownGraceNs);
+        NetworkConfigChecks.timeProbes(timeProbeIntervalNs, timeProbeBurst, timeWindowSize);
+        NetworkConfigChecks.limits(maxConnections, maxHops, maxPendingHandshakes, maxFrameBytes, maxQueuedBytesPerPeer,
+                maxInboundBytesPerPeer);
         Objects.requireNonNull(announcePolicy, "announcePolicy=null: use AnnouncePolicy.any()");
         Objects.requireNonNull(cpus, "cpus=null: use CpuSet.inherit()");
-        requirePriority("threadPolicy", threadPolicy);
-        requirePriority("bulkThreadPolicy", bulkThreadPolicy);
-        requireRange("lanes", lanes, 1, 2);
+        NetworkConfigChecks.threads(threadPolicy, bulkThreadPolicy, lanes);
         if (!connectionFactory.authenticatesPeers() && !insecure) {
-            requireLoopback("listenAddress", listenAddress);
-            for (InetSocketAddress peer : peers) {
-                requireLoopback("peer", peer);
-            }
+            NetworkConfigChecks.loopbackOnly(listenAddress, peers);
         }
     }
 
@@ -162,46 +136,8 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
      *         not a loopback address
      */
     public boolean isInsecureBeyondLoopback() {
-        if (connectionFactory.authenticatesPeers()) {
-            return false;
-        }
-        boolean beyond = !isLoopback(listenAddress);
-        for (InetSocketAddress peer : peers) {
-            beyond |= !isLoopback(peer);
-        }
-        return beyond;
-    }
-
-    private static boolean isLoopback(InetSocketAddress address) {
-        return !address.isUnresolved() && address.getAddress().isLoopbackAddress();
-    }
-
-    private static void requireLoopback(String field, InetSocketAddress address) {
-        if (!isLoopback(address)) {
-            throw new IllegalArgumentException(field + "=" + address + " is beyond loopback, and plain TCP"
-                    + " authenticates no one: configure TLS (connectionFactory(ConnectionFactory.tls(...))), or, on a"
-                    + " network you trust, choose plain links with insecure(true)");
-        }
-    }
-
-    private static void requireRange(String field, long value, long min, long max) {
-        if (value < min || value > max) {
-            throw new IllegalArgumentException(field + "=" + value + " must be in [" + min + ", " + max + "]");
-        }
-    }
-
-    private static void requirePriority(String field, ThreadPolicy policy) {
-        if (policy != null && policy.isRealtime() && (policy.priority() < ThreadSchedulingRule.MIN_REALTIME_PRIORITY
-                || policy.priority() > ThreadSchedulingRule.MAX_REALTIME_PRIORITY)) {
-            throw new IllegalArgumentException(field + ".priority=" + policy.priority() + " must be in "
-                    + ThreadSchedulingRule.MIN_REALTIME_PRIORITY + ".." + ThreadSchedulingRule.MAX_REALTIME_PRIORITY);
-        }
-    }
-
-    private static void requirePositive(String field, long valueNs) {
-        if (valueNs <= 0) {
-            throw new IllegalArgumentException(field + "=" + valueNs + " must be > 0");
-        }
+        return !connectionFactory.authenticatesPeers()
+                && NetworkConfigChecks.anyBeyondLoopback(listenAddress, peers);
     }
 
     /**
