@@ -89,6 +89,7 @@ final class Loopback {
             }
             String bytes = String.format(Locale.ROOT, "request %d B, reply %d B of XML", requestXml.length,
                     replyXml.length);
+            OneWay oneWay = noneAfterHigh(a, aNet, b);
             UnderLow twoLanes = highUnderLow(2, qos, timeoutNs);
             UnderLow oneLane = highUnderLow(1, qos, timeoutNs);
             BenchRow messenger = BenchRow.latency("loopback.messenger", SECTION, "NetworkMessenger request/reply",
@@ -116,8 +117,56 @@ final class Loopback {
                     BenchRow.value("loopback.ratio.p99", SECTION, "NetworkMessenger / raw TCP, p99",
                             "idle, back to back", p99Ratio, "x", "same run, same CPU-latency state")
                             .judged("<= 1.5x", p99Ratio <= 1.5),
-                    rtIdle, saturated.judged("p99 <= 2x idle p99", saturated.p99() <= 2 * rtIdle.p99()), single);
+                    rtIdle, saturated.judged("p99 <= 2x idle p99", saturated.p99() <= 2 * rtIdle.p99()), single,
+                    BenchRow.latency("loopback.one-way.high", SECTION, "NetworkMessenger HIGH message, one way",
+                            "idle, then a NONE message", "us", Percentiles.of(oneWay.highNs()),
+                            "send to the receiving component's start; lane 0"),
+                    BenchRow.latency("loopback.one-way.none-after-high", SECTION,
+                            "NetworkMessenger NONE message sent right after a HIGH one, one way", "idle", "us",
+                            Percentiles.of(oneWay.noneNs()), "lane 1; goes once lane 0 settled the HIGH one (the"
+                                    + " order across lanes): a SYNC, its acknowledgement, then lane 1's writer"));
         }
+    }
+
+    private static final Profile MARKS = Profile.of("bench-marks");
+
+    /** One-way times of a HIGH message and of a NONE message sent right after it, in ns. */
+    private record OneWay(Histogram highNs, Histogram noneNs) {
+    }
+
+    /**
+     * Pairs of messages from a to a component of b, one at a time: a HIGH one, and a NONE one
+     * right after it, which by the order across lanes goes on lane 1 only once lane 0 settled the
+     * HIGH one. Each is timed from its send to the start of its handling (one clock: both nodes
+     * are in this JVM).
+     */
+    private OneWay noneAfterHigh(EtherwareNode a, NetworkMessenger aNet, EtherwareNode b) throws Exception {
+        var arrivedNs = new java.util.concurrent.atomic.AtomicLongArray(2);
+        b.add(MARKS, () -> (message, context) -> arrivedNs.set(
+                message.qos().criticality() == Criticality.NONE ? 1 : 0, System.nanoTime()));
+        if (!aNet.awaitResolvable(MARKS, Duration.ofSeconds(30))) {
+            throw new IllegalStateException("b's " + MARKS + " was never announced to a");
+        }
+        Histogram highNs = Histograms.latencyNs();
+        Histogram noneNs = Histograms.latencyNs();
+        int count = Math.max(500, config.roundTrips() / 3);
+        QoS high = QoS.of(Criticality.HIGH);
+        long endNs = System.nanoTime() + TimeUnit.SECONDS.toNanos(30); // bounded if each takes long
+        for (int i = -count / 4; i < count && System.nanoTime() - endNs < 0; i++) {
+            arrivedNs.set(0, 0);
+            arrivedNs.set(1, 0);
+            long sentNs = System.nanoTime();
+            a.send(MARKS, PAYLOAD, high);
+            a.send(MARKS, PAYLOAD, QoS.NONE);
+            while ((arrivedNs.get(0) == 0 || arrivedNs.get(1) == 0) && System.nanoTime() - endNs < 0) {
+                java.util.concurrent.locks.LockSupport.parkNanos(10_000);
+            }
+            if (i >= 0 && arrivedNs.get(1) != 0) {
+                highNs.recordValue(Histograms.clampNs(arrivedNs.get(0) - sentNs));
+                noneNs.recordValue(Histograms.clampNs(arrivedNs.get(1) - sentNs));
+            }
+        }
+        return new OneWay(highNs, noneNs);
     }
 
     private static final Profile SINK = Profile.of("bench-sink");

@@ -56,6 +56,11 @@ final class MigrationGap implements GapMeasurement {
     public BenchRow measure(BenchConfig config, int repetitions) throws Exception {
         var types = new ContentsTypes().register("bench.seq", Seq.class).register("bench.chainState", ChainState.class);
         var gapsNs = new long[repetitions];
+        // The gap's parts: snapshot and INSTALL round trip, relocation, and from there to the
+        // first handling at the target (HANDOVER one way, the forwarded messages, the admission).
+        var installNs = new long[repetitions];
+        var relocateNs = new long[repetitions];
+        var handoverNs = new long[repetitions];
         int measured = 0;
         long held = 0;
         int warmup = Math.min(MAX_WARMUP, repetitions);
@@ -79,6 +84,9 @@ final class MigrationGap implements GapMeasurement {
                 int from = Math.floorMod(i, 2);
                 MigrationResult result = migrateWhileChained(a, nodes[from], nodes[1 - from]);
                 if (i >= 0 && result.gapNs() >= 0) {
+                    installNs[measured] = result.transferNs();
+                    relocateNs[measured] = result.relocateNs();
+                    handoverNs[measured] = result.gapNs() - result.transferNs() - result.relocateNs();
                     gapsNs[measured++] = result.gapNs();
                     held += result.heldMessages();
                 }
@@ -87,7 +95,15 @@ final class MigrationGap implements GapMeasurement {
         return GapMeasurement.row(id(), "migration (two nodes, TCP loopback)", repetitions
                 + " migrations back and forth", Percentiles.ofSamples(gapsNs, measured), 5_000,
                 String.format(Locale.ROOT, "%d of %d gaps measured after %d warm-up; %d messages held and forwarded;"
-                        + " %d breaks in the message sequence", measured, repetitions, warmup, held, Chain.breaks.get()));
+                        + " %d breaks in the message sequence; parts p50/p99: snapshot+install %s, relocate %s,"
+                        + " hand-over to first handling %s", measured, repetitions, warmup, held, Chain.breaks.get(),
+                        part(installNs, measured), part(relocateNs, measured), part(handoverNs, measured)));
+    }
+
+    /** p50/p99 of one part of the gap, in µs. */
+    private static String part(long[] samplesNs, int count) {
+        Percentiles part = Percentiles.ofSamples(samplesNs, count);
+        return String.format(Locale.ROOT, "%.0f/%.0f us", part.p50Ns() / 1e3, part.p99Ns() / 1e3);
     }
 
     private static NetworkConfig.Builder loopback() {

@@ -50,8 +50,13 @@ final class Link {
     private final OutboundRules rules;
     /** Lane 1's link, nudged when an acknowledgement here may let its held NONE message go; set once. */
     volatile Link follower;
-    /** This lane's writer waits with a NONE message held for lane 0 at the head of its queue. */
+    /**
+     * This lane's writer has a NONE message that waits for lane 0 at the head of its queue: set
+     * before the writer looks whether lane 0 settled it, cleared once it may go.
+     */
     private volatile boolean holdsNone;
+    /** Lane 0 settled messages since this lane's writer last looked (see {@link #nudge}). */
+    private volatile boolean nudged;
     private volatile Connection active;
 
     // Guarded by lock.
@@ -229,12 +234,19 @@ final class Link {
                     return last;
                 }
                 Outgoing head = outbox.peek();
+                // Announced before the look at lane 0, and the nudge cleared: a settlement that
+                // this look misses sees the announcement and nudges (see nudge()).
+                holdsNone = head != null && head.after() >= 0;
+                nudged = false;
                 boolean held = head != null && !order.mayGo(head);
                 holdsNone = held;
                 boolean sendable = head != null && out.size() < window && out.lowRoomFor(head, 0) && !held;
                 if (!connection.requests.hasRequests() && !sendable) {
                     long waitNs = connection.output().heartbeatDueNs() - NetworkContext.nowNs();
                     if (waitNs > 0) {
+                        if (held && nudged) {
+                            continue; // lane 0 settled since the look: look again
+                        }
                         work.awaitNanos(LaneOrder.waitNs(waitNs, held));
                         continue;
                     }
@@ -351,14 +363,25 @@ final class Link {
 
     /**
      * Lane 0 settled messages: if this lane's writer holds a NONE message for it, it looks again
-     * now rather than at its next 1 ms poll. Takes no lock (an unpark: the writer's wait loop
-     * takes an early return as a reason to look again).
+     * now rather than at its next 1 ms poll. Never blocks: the caller is lane 0's reader, which
+     * must not wait for this lane's lock (held by LOW senders and this lane's writer). It sets
+     * {@link #nudged}, which the writer reads between its look and its wait, and signals the writer
+     * if the lock is free. Only when the writer is between that read and its wait, or another
+     * thread holds the lock while the writer waits, does the nudge miss, and the writer looks at
+     * its next poll. (An unpark would not do: a condition wait parks again until signalled or
+     * timed out.)
      */
     private void nudge() {
-        Connection connection = active;
-        Thread writer = connection == null ? null : connection.writerThread();
-        if (holdsNone && writer != null) {
-            java.util.concurrent.locks.LockSupport.unpark(writer);
+        if (!holdsNone) {
+            return;
+        }
+        nudged = true;
+        if (lock.tryLock()) {
+            try {
+                work.signalAll();
+            } finally {
+                lock.unlock();
+            }
         }
     }
 
