@@ -27,6 +27,7 @@ import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicLong;
 import java.util.concurrent.locks.LockSupport;
+import java.util.function.Consumer;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -82,6 +83,8 @@ public final class Notifier implements AutoCloseable {
     private final CountDownLatch started = new CountDownLatch(1);
     private final Component component;
     private final Object lifecycle = new Object();
+    /** Made once: a method reference in the release loop would be a new object on every pass. */
+    private final Consumer<SubscriptionState> finished = this::onFinished;
     private Thread thread; // guarded by lifecycle
     private volatile boolean running;
     private volatile boolean closed;
@@ -415,7 +418,7 @@ public final class Notifier implements AutoCloseable {
                 for (SubscriptionState state = intake.poll(); state != null; state = intake.poll()) {
                     schedule.add(state);
                 }
-                long nextReleaseNs = schedule.fireDue(this::onFinished);
+                long nextReleaseNs = schedule.fireDue(finished);
                 if (running && intake.isEmpty()) {
                     sleeper.sleepUntil(nextReleaseNs);
                 }
