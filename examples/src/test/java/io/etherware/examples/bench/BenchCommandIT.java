@@ -35,6 +35,7 @@ class BenchCommandIT {
             "codec.json.decode.angles",
             "loopback.messenger", "loopback.raw", "loopback.ratio.p50", "loopback.ratio.p99",
             "loopback.messenger.high-under-low", "loopback.messenger.high-under-low.one-lane", "loopback.messenger.rt-idle",
+            "loopback.one-way.high", "loopback.one-way.none-after-high",
             "gap.upgrade", "gap.migration",
             "gc.pauses");
 
