@@ -1,6 +1,8 @@
 package io.etherware.core.scheduler;
 
 import io.etherware.core.message.Message;
+import java.lang.invoke.MethodHandles;
+import java.lang.invoke.VarHandle;
 import java.util.Objects;
 
 /**
@@ -44,6 +46,18 @@ public final class Job {
     private final JobPool pool;
     /** The next job in {@link #pool}'s free or returned list; the pool's. */
     Job poolNext;
+    /** This job's depth in the pool's returned list (1 at the bottom); the pool's. */
+    int poolDepth;
+
+    private static final VarHandle MESSAGE;
+
+    static {
+        try {
+            MESSAGE = MethodHandles.lookup().findVarHandle(Job.class, "message", Message.class);
+        } catch (ReflectiveOperationException e) {
+            throw new ExceptionInInitializerError(e);
+        }
+    }
 
     /**
      * A job for one delivery, not yet placed.
@@ -83,11 +97,17 @@ public final class Job {
     }
 
     private void set(Message newMessage, String newTargetName, Object newTarget, long newSequence, long newReleaseNs) {
-        this.message = Objects.requireNonNull(newMessage, "message");
         this.targetName = Objects.requireNonNull(newTargetName, "targetName");
         this.target = Objects.requireNonNull(newTarget, "target");
         this.sequence = newSequence;
         this.releaseNs = newReleaseNs;
+        // Cleared by the recycler too; again here, on the thread that fills the job, so that a
+        // reused job never carries an old placement, reservation or link.
+        this.dispatcherId = -1;
+        this.key = 0;
+        this.reserved = false;
+        this.link = null;
+        this.message = Objects.requireNonNull(newMessage, "message");
     }
 
     /**
@@ -97,17 +117,18 @@ public final class Job {
      * constructor is left as it is, to the garbage collector. Lock-free and allocation-free, from
      * any thread.
      *
-     * @throws IllegalStateException when a pooled job was recycled already (a scheduler's bug; the
-     *                               pool is left intact)
+     * @throws IllegalStateException when a pooled job was recycled already, even by two threads at
+     *                               once (a scheduler's bug; the pool is left intact)
      */
     public void recycle() {
         if (pool == null) {
             return;
         }
-        if (message == null) {
+        Message delivered = message;
+        // One CAS: of two recycles of the same job, at most one gives it back.
+        if (delivered == null || !MESSAGE.compareAndSet(this, delivered, (Message) null)) {
             throw new IllegalStateException("job recycled twice");
         }
-        message = null;
         targetName = null;
         target = null;
         dispatcherId = -1;

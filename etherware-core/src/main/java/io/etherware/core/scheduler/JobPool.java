@@ -12,10 +12,14 @@ import java.lang.invoke.VarHandle;
  * Taking the whole list, never one node, keeps the stack free of the ABA problem; a preempted
  * pusher delays nobody.
  *
- * <p>A pool makes at most {@link #CAPACITY} jobs; beyond that (a burst of sends whose jobs have not
- * run yet) it makes jobs that belong to no pool and are left to the garbage collector, so a burst
- * does not pin memory for the thread's life. Virtual threads take no pool. A pool dies with its
- * thread: jobs still out then return to a pool nobody takes from, and are collected with it.
+ * <p>Bounded without counting what is out: each job pushed records its depth in the returned list,
+ * and a job that would go deeper than {@link #CAPACITY} is not kept (left to the garbage
+ * collector). The free list is a former returned list, so a pool holds at most twice
+ * {@link #CAPACITY} jobs, whatever burst its thread once sent. A job that never comes back
+ * (discarded, forwarded by a relocation, or run by a scheduler that does not recycle) costs the
+ * pool nothing: when both lists are empty, the thread makes a new job. Virtual threads take no
+ * pool. A pool dies with its thread: jobs still out then return to a pool nobody takes from, and
+ * are collected with it.
  *
  * <p>Thread-safety: {@link #take} on the owning thread only (through the thread-local);
  * {@link #giveBack} from any thread. The swap's acquire pairs with the push's release, so the
@@ -23,7 +27,7 @@ import java.lang.invoke.VarHandle;
  */
 final class JobPool {
 
-    /** Jobs one thread's pool makes at most: 64 KiB of jobs. */
+    /** Jobs a pool's returned list keeps at most: 64 KiB of jobs. */
     static final int CAPACITY = 1024;
 
     private static final ThreadLocal<JobPool> POOLS = ThreadLocal.withInitial(JobPool::new);
@@ -39,8 +43,6 @@ final class JobPool {
 
     /** Owner only. */
     private Job free;
-    /** Owner only: jobs this pool has made. */
-    private int made;
     /** Pushed by any thread, taken whole by the owner. */
     @SuppressWarnings("unused") // through RETURNED
     private volatile Job returned;
@@ -49,8 +51,8 @@ final class JobPool {
     }
 
     /**
-     * On any thread: a job of the calling thread's pool, free or new; one of no pool past capacity
-     * or on a virtual thread (those are many and short-lived: a pool each would outweigh the jobs).
+     * On any thread: a job of the calling thread's pool, free or new; one of no pool on a virtual
+     * thread (those are many and short-lived: a pool each would outweigh the jobs).
      */
     static Job take() {
         if (Thread.currentThread().isVirtual()) {
@@ -64,11 +66,7 @@ final class JobPool {
         if (job == null) {
             job = (Job) RETURNED.getAndSet(this, (Job) null);
             if (job == null) {
-                if (made < CAPACITY) {
-                    made++;
-                    return new Job(this);
-                }
-                return new Job((JobPool) null);
+                return new Job(this);
             }
         }
         free = job.poolNext;
@@ -76,12 +74,17 @@ final class JobPool {
         return job;
     }
 
-    /** Any thread: a recycled job of this pool comes back. */
+    /** Any thread: a recycled job of this pool comes back, unless the returned list is full. */
     void giveBack(Job job) {
         Job head;
         do {
             head = returned;
+            int depth = head == null ? 1 : head.poolDepth + 1;
+            if (depth > CAPACITY) {
+                return; // full: left to the garbage collector
+            }
             job.poolNext = head;
-        } while (!RETURNED.weakCompareAndSetRelease(this, head, job));
+            job.poolDepth = depth;
+        } while (!RETURNED.compareAndSet(this, head, job));
     }
 }

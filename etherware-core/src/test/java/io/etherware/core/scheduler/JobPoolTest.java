@@ -125,22 +125,65 @@ class JobPoolTest {
     }
 
     @Test
-    void shouldMakeJobsOfNoPoolBeyondItsCapacitySoABurstDoesNotPinMemory() throws Exception {
+    void shouldKeepAtMostItsCapacityOfABurstSoTheBurstDoesNotPinMemory() throws Exception {
         onFreshThread(() -> {
             var burst = new ArrayList<Job>();
             for (int i = 0; i < JobPool.CAPACITY + 10; i++) {
                 burst.add(take(i));
             }
             burst.forEach(Job::recycle);
-            Set<Job> pooled = Collections.newSetFromMap(new IdentityHashMap<>());
-            pooled.addAll(burst.subList(0, JobPool.CAPACITY));
+            Set<Job> kept = Collections.newSetFromMap(new IdentityHashMap<>());
+            kept.addAll(burst.subList(0, JobPool.CAPACITY));
             Set<Job> again = Collections.newSetFromMap(new IdentityHashMap<>());
             for (int i = 0; i < JobPool.CAPACITY; i++) {
                 again.add(take(i));
             }
-            assertEquals(pooled, again, "the pool holds exactly the jobs it made, each once");
+            assertEquals(kept, again, "the first CAPACITY recycled came back, each once");
             Job beyond = take(0);
             assertTrue(burst.stream().noneMatch(job -> job == beyond), "the burst's extra jobs were not kept");
+            return null;
+        });
+    }
+
+    @Test
+    void shouldReuseJobsAgainAfterManyWereNeverRecycled() throws Exception {
+        onFreshThread(() -> {
+            for (int i = 0; i < 3 * JobPool.CAPACITY; i++) {
+                take(i); // discarded, forwarded elsewhere, or run by a scheduler that does not recycle
+            }
+            Job job = take(1);
+            job.recycle();
+            assertSame(job, take(2), "jobs that never came back do not use the pool up");
+            return null;
+        });
+    }
+
+    @Test
+    void shouldGiveAJobBackOnceWhenTwoThreadsRecycleItAtOnce() throws Exception {
+        onFreshThread(() -> {
+            for (int round = 0; round < 200; round++) {
+                Job job = take(round);
+                var start = new java.util.concurrent.CountDownLatch(1);
+                var refused = new java.util.concurrent.atomic.AtomicInteger();
+                Runnable recycle = () -> {
+                    try {
+                        start.await();
+                        job.recycle();
+                    } catch (IllegalStateException e) {
+                        refused.incrementAndGet();
+                    } catch (InterruptedException e) {
+                        Thread.currentThread().interrupt();
+                    }
+                };
+                Thread first = Thread.ofPlatform().start(recycle);
+                Thread second = Thread.ofPlatform().start(recycle);
+                start.countDown();
+                first.join();
+                second.join();
+                assertEquals(1, refused.get(), "round " + round + ": exactly one of the two recycles is refused");
+                assertSame(job, take(0));
+                assertNotSame(job, take(1), "round " + round + ": the job is in the pool once");
+            }
             return null;
         });
     }

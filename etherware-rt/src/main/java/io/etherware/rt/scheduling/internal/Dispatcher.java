@@ -54,7 +54,8 @@ public final class Dispatcher implements Runnable {
 
     private static final Logger LOG = LoggerFactory.getLogger(Dispatcher.class);
     private static final VarHandle INTAKE;
-    private static final EventType DISPATCH_EVENTS = EventType.getEventType(DispatchEvent.class);
+    /** The dispatch event's type, or null on a JVM built without the Flight Recorder. */
+    private static final EventType DISPATCH_EVENTS = dispatchEventType();
 
     static {
         try {
@@ -180,6 +181,14 @@ public final class Dispatcher implements Runnable {
         }
     }
 
+    private static EventType dispatchEventType() {
+        try {
+            return EventType.getEventType(DispatchEvent.class);
+        } catch (InternalError | RuntimeException e) {
+            return null; // "Flight Recorder is not supported on this VM": no events, the dispatcher runs on
+        }
+    }
+
     /** Takes the whole intake (one swap) into the heap. */
     private void moveIntakeToReady() {
         Job job = takeIntake();
@@ -200,7 +209,7 @@ public final class Dispatcher implements Runnable {
         long startNs = context.clock.nanoTime();
         // Made only while a recording takes the event: not left to escape analysis, which does not
         // remove it until the method is compiled again after a deoptimization.
-        DispatchEvent event = DISPATCH_EVENTS.isEnabled() ? new DispatchEvent() : null;
+        DispatchEvent event = DISPATCH_EVENTS != null && DISPATCH_EVENTS.isEnabled() ? new DispatchEvent() : null;
         if (event != null) {
             event.begin();
         }

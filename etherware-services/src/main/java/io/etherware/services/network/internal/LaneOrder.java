@@ -89,7 +89,8 @@ final class LaneOrder {
     /**
      * How long a writer with nothing to send waits, at most, for its heartbeat due in
      * {@code waitNs}: a NONE message {@code held} for lane 0 is looked at again every millisecond,
-     * since lane 0 never signals this lane (its threads never take this lane's lock).
+     * for the rare acknowledgement whose nudge misses the writer (lane 0 only tries this lane's
+     * lock, never waits for it: see {@code Link.nudge}).
      */
     static long waitNs(long waitNs, boolean held) {
         return held ? Math.min(waitNs, BARRIER_POLL_NS) : waitNs;

@@ -33,7 +33,8 @@ import java.util.function.Supplier;
  * <p>Locking: {@link #lock} guards the outbound state (the parts above) and the connections'
  * writer requests; the {@link #inbound} stream's monitor guards it and is taken first when both
  * are needed. The parts take no lock of their own ({@link OutputToken#release} takes this one).
- * Nothing calls the kernel while holding {@link #lock}.
+ * Nothing calls the kernel while holding {@link #lock}. Lane 0's reader, after an acknowledgement
+ * and with no lock held, only tries lane 1's lock ({@link #nudge}); it never waits for it.
  */
 final class Link {
 
