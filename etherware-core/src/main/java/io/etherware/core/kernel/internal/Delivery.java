@@ -33,8 +33,9 @@ import org.slf4j.LoggerFactory;
  * <p>Owned by {@link KernelCore}, which resolves profiles and hands messages here.
  *
  * <p>Thread-safety: every method may be called from any thread and takes no lock; the per-message
- * path allocates nothing in steady state (jobs come from the sending thread's pool, see
- * {@link Job#pooled}).
+ * path allocates nothing in steady state under a scheduler that recycles its jobs, as the
+ * real-time one does (jobs come from the sending thread's pool, see {@link Job#pooled}); under the
+ * FIFO scheduler each job is new.
  */
 final class Delivery {
 
