@@ -66,6 +66,22 @@ public class ReportingCounter implements Component {
         }
     }
 
+    /**
+     * Its construction takes {@link #CONSTRUCT_MS}: the target of a migration that does not finish
+     * its PREPARE step in time.
+     */
+    public static class SlowConstruct extends ReportingCounter {
+        public static final long CONSTRUCT_MS = 1_500;
+
+        public SlowConstruct() {
+            try {
+                Thread.sleep(CONSTRUCT_MS);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+        }
+    }
+
     /** Its restore always throws: a migration to it must roll back. */
     public static class FailingRestore extends ReportingCounter {
         @Override

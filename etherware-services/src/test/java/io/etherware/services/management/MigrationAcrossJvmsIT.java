@@ -22,12 +22,14 @@ import java.util.concurrent.ExecutionException;
 import java.util.concurrent.TimeUnit;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
+import org.junit.jupiter.params.ParameterizedTest;
+import org.junit.jupiter.params.provider.CsvSource;
 
 /**
  * Migration between two JVMs on loopback: the second JVM ({@link MigrationPeer}) runs on the same
  * class path. A stateful counter under a steady stream of sequence-numbered messages moves there
- * and back with nothing lost, duplicated or reordered; when the target JVM is killed in the
- * middle of a migration, the counter resumes at the source with nothing lost.
+ * and back with nothing lost, duplicated or reordered; when the target JVM is killed inside the
+ * PREPARE or the INSTALL step of a migration, the counter resumes at the source with nothing lost.
  */
 class MigrationAcrossJvmsIT {
 
@@ -116,26 +118,34 @@ class MigrationAcrossJvmsIT {
         }
     }
 
-    @Test
-    void shouldResumeAtTheSourceWithNothingLostWhenTheTargetJvmIsKilledDuringTheMigration() throws Exception {
+    /**
+     * The target JVM is killed (SIGKILL) inside a step: in PREPARE (the class constructs for 1.5 s,
+     * the counter still runs at the source) or in INSTALL (the state restores for 1.5 s, the source
+     * holds the counter). Either way the counter resumes at the source, every message of the
+     * stream handled there exactly once and in order.
+     */
+    @ParameterizedTest(name = "killed in {0}")
+    @CsvSource({
+        "PREPARE, example.counter.ReportingCounter$SlowConstruct, did not answer the PREPARE step",
+        "INSTALL, example.counter.ReportingCounter$SlowRestore, resumed at 'jvm-a'"})
+    void shouldResumeAtTheSourceWithNothingLostWhenTheTargetJvmIsKilledDuringAStep(String step, String className,
+            String expectedError) throws Exception {
         try (var a = sourceWithCounter()) {
             Process b = startPeer(a, "jvm-b");
             try {
                 var stream = new SeqStream(a.node, COUNTER, STREAM_PERIOD_NS);
                 stream.awaitMore(200);
-                // The target's restore takes 1.5 s: the source holds the counter meanwhile.
-                var request = new MigrateRequest(COUNTER, "jvm-b", ReportingCounter.SlowRestore.class.getName(),
-                        null, null);
+                var request = new MigrateRequest(COUNTER, "jvm-b", className, null, null);
                 CompletableFuture<MigrationResult> migration = Management.migrate(a.node, "jvm-a", request,
                         Duration.ofSeconds(60));
-                Thread.sleep(500);
+                Thread.sleep(500); // inside the 1.5 s step
                 b.destroyForcibly();
                 assertTrue(b.waitFor(30, TimeUnit.SECONDS), "the target JVM is gone");
 
                 var error = assertThrows(ExecutionException.class, () -> migration.get(60, TimeUnit.SECONDS));
                 var failure = assertInstanceOf(ManagementException.class, error.getCause()).failure();
-                assertEquals(ManagementFailure.Reason.TARGET_UNREACHABLE, failure.reason(), failure.error());
-                assertTrue(failure.error().contains("resumed at 'jvm-a'"), failure.error());
+                assertEquals(ManagementFailure.Reason.TARGET_UNREACHABLE, failure.reason(), step + ": " + failure.error());
+                assertTrue(failure.error().contains(expectedError), step + ": " + failure.error());
                 stream.awaitMore(200);
 
                 stream.stopAndAssertExactlyOnceInOrder();
