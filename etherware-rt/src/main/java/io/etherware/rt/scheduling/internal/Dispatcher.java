@@ -13,6 +13,7 @@ import io.etherware.rt.scheduling.DispatcherSpec;
 import java.lang.invoke.MethodHandles;
 import java.lang.invoke.VarHandle;
 import java.util.ArrayList;
+import java.util.Collection;
 import java.util.List;
 import java.util.PriorityQueue;
 import java.util.concurrent.CountDownLatch;
@@ -161,7 +162,7 @@ public final class Dispatcher implements Runnable {
     /** The next job by key then sequence, parking while there is none; null once aborted. */
     private Job next() {
         while (true) {
-            moveIntakeToReady();
+            moveIntakeTo(ready);
             if (context.state == DispatchContext.ABORTED) {
                 return null;
             }
@@ -189,20 +190,15 @@ public final class Dispatcher implements Runnable {
         }
     }
 
-    /** Takes the whole intake (one swap) into the heap. */
-    private void moveIntakeToReady() {
-        Job job = takeIntake();
+    /** Takes the whole intake (one swap) into {@code jobs}, unlinked: the heap, or the jobs drained at shutdown. */
+    private void moveIntakeTo(Collection<Job> jobs) {
+        Job job = intake == null ? null : (Job) INTAKE.getAndSet(this, (Job) null);
         while (job != null) {
             Job next = job.link();
             job.link(null);
-            ready.add(job);
+            jobs.add(job);
             job = next;
         }
-    }
-
-    /** The whole intake, newest first, chained through {@link Job#link}; null when empty. */
-    private Job takeIntake() {
-        return intake == null ? null : (Job) INTAKE.getAndSet(this, (Job) null);
     }
 
     private void execute(Job job) {
@@ -396,12 +392,7 @@ public final class Dispatcher implements Runnable {
      */
     public List<Job> drain(int[] stranded) {
         var jobs = new ArrayList<Job>();
-        for (Job job = takeIntake(); job != null; ) {
-            Job next = job.link();
-            job.link(null);
-            jobs.add(job);
-            job = next;
-        }
+        moveIntakeTo(jobs);
         if (!thread.isAlive()) {
             jobs.addAll(ready);
             ready.clear();
