@@ -9,6 +9,8 @@ import io.etherware.examples.bench.UpgradeGap.Chain;
 import io.etherware.examples.bench.UpgradeGap.ChainState;
 import io.etherware.examples.bench.UpgradeGap.ChainV1;
 import io.etherware.examples.bench.UpgradeGap.Seq;
+import io.etherware.rt.scheduling.RealtimeSchedulerConfig;
+import io.etherware.rt.scheduling.ThreadSchedulingRule;
 import io.etherware.services.management.AccessRule;
 import io.etherware.services.management.Management;
 import io.etherware.services.management.ManagementConfig;
@@ -28,8 +30,14 @@ import java.util.concurrent.TimeUnit;
  * NetworkMessengers over TCP on loopback, so the state and the held messages cross a real socket
  * as XML. The gap is the management services': the end of the last message handled at the source
  * to the start of the first handled at the target. From the services module's migration gap
- * harness. Both nodes run the kernel's FIFO dispatcher: the gap is the migration protocol's, two
- * steps across the network, not a scheduler's.
+ * harness.
+ *
+ * <p>Both nodes run the real-time scheduler, as the upgrade row's node does: Table II priorities
+ * when {@link BenchConfig#realtimeBursts()}, else ordinary ones. With Table II, the network
+ * threads, the target's management dispatcher and the source's worker during the gap run at
+ * real-time priorities, so the row measures the protocol (two steps across the network and a
+ * relocation) rather than how long ordinary threads wait for a CPU behind the JIT compiler and the
+ * collector; with ordinary priorities it measures both.
  */
 final class MigrationGap implements GapMeasurement {
 
@@ -65,9 +73,11 @@ final class MigrationGap implements GapMeasurement {
         long held = 0;
         int warmup = Math.min(MAX_WARMUP, repetitions);
         Chain.breaks.set(0);
-        try (var a = EtherwareNode.builder().nodeId("bench-mig-a").contentsTypes(types).build().start();
+        ThreadSchedulingRule rule = config.realtimeBursts() ? ThreadSchedulingRule.tableII()
+                : ThreadSchedulingRule.nonRealtime(4);
+        try (var a = node("bench-mig-a", types, config, rule);
                 var aNet = NetworkMessenger.start(a, loopback().build());
-                var b = EtherwareNode.builder().nodeId("bench-mig-b").contentsTypes(types).build().start();
+                var b = node("bench-mig-b", types, config, rule);
                 var bNet = NetworkMessenger.start(b, loopback().peer(aNet.localAddress()).build())) {
             // Each node asks the other to move the loop to it, and receives it from the other.
             ManagementService.install(a, management(b.nodeId()), aNet);
@@ -92,8 +102,10 @@ final class MigrationGap implements GapMeasurement {
                 }
             }
         }
-        return GapMeasurement.row(id(), "migration (two nodes, TCP loopback)", repetitions
-                + " migrations back and forth", Percentiles.ofSamples(gapsNs, measured), 5_000,
+        String condition = String.format(Locale.ROOT, "%d migrations back and forth, %s", repetitions,
+                config.realtimeBursts() ? "Table II priorities" : "ordinary priorities");
+        return GapMeasurement.row(id(), "migration (two nodes, TCP loopback)", condition,
+                Percentiles.ofSamples(gapsNs, measured), 2_000,
                 String.format(Locale.ROOT, "%d of %d gaps measured after %d warm-up; %d messages held and forwarded;"
                         + " %d breaks in the message sequence; parts p50/p99: snapshot+install %s, relocate %s,"
                         + " hand-over to first handling %s", measured, repetitions, warmup, held, Chain.breaks.get(),
@@ -104,6 +116,12 @@ final class MigrationGap implements GapMeasurement {
     private static String part(long[] samplesNs, int count) {
         Percentiles part = Percentiles.ofSamples(samplesNs, count);
         return String.format(Locale.ROOT, "%.0f/%.0f us", part.p50Ns() / 1e3, part.p99Ns() / 1e3);
+    }
+
+    private static EtherwareNode node(String nodeId, ContentsTypes types, BenchConfig config,
+                                      ThreadSchedulingRule rule) {
+        return EtherwareNode.builder().nodeId(nodeId).contentsTypes(types).scheduler(() -> config.realtimeScheduler(
+                RealtimeSchedulerConfig.builder().threadSchedulingRule(rule))).build().start();
     }
 
     private static NetworkConfig.Builder loopback() {

@@ -32,7 +32,9 @@ import org.slf4j.LoggerFactory;
  * documentation of {@code io.etherware.services.management} for the ordering argument.
  *
  * <p>Threading: {@link #migrate} blocks for the target's answers, so it runs on the management
- * service's worker thread, never on a dispatcher; one migration at a time per service.
+ * service's worker thread, never on a dispatcher; one migration at a time per service. From the
+ * hold to the hand-over's answer that thread runs at the node's highest real-time dispatcher's
+ * priority ({@link GapPriority}), so that no step of the gap waits for an ordinary thread's turn.
  */
 public final class MigrationSource {
 
@@ -46,6 +48,7 @@ public final class MigrationSource {
     private final ManagementConfig config;
     private final NetworkMessenger network;
     private final AccessControl access;
+    private final GapPriority gapPriority;
 
     /**
      * @param network the node's messenger, for the route to the target and its clock; null on a
@@ -58,6 +61,7 @@ public final class MigrationSource {
         this.config = config;
         this.network = network;
         this.access = access;
+        this.gapPriority = GapPriority.of(kernel);
     }
 
     /**
@@ -88,7 +92,18 @@ public final class MigrationSource {
         step(toNode, new MigrationStep(Phase.PREPARE, profile, kernel.nodeId(), arrival, className, request.jarPath(),
                 request.configuration(), null, 0), stepNs);
         long quiesceStartNs = kernel.clock().nanoTime();
+        try (var raised = gapPriority.raise()) {
+            return moveHeld(profile, toNode, className, arrival, receivedNs, prepareStartNs, quiesceStartNs);
+        }
+    }
 
+    /**
+     * The migration gap, at {@link #gapPriority}: holds the component here, ships its state,
+     * relocates it and hands it over.
+     */
+    private MigrationResult moveHeld(Profile profile, String toNode, String className, Profile arrival,
+                                     long receivedNs, long prepareStartNs, long quiesceStartNs) throws LoadFailure {
+        long stepNs = config.migrationStepTimeoutNs();
         // (ii) Quiesce at a message boundary where the component waits for no reply (the outcomes
         // of its requests reach it here, where their callbacks are): from now on its messages are
         // kept here, in order.
