@@ -123,6 +123,27 @@ class NetworkBadInputIT {
         assertOnlyTheOffenderWasClosed(CloseReason.HANDSHAKE_TIMEOUT);
     }
 
+    /**
+     * A peer that says BYE where its RESUME was due (it is shutting down, or its own side of the
+     * handshake failed, as when a connection is cut while both ends handshake) has left; it broke
+     * no rule, so the close is not counted as bad input.
+     */
+    @Test
+    void shouldTakeAByeInsideTheHandshakeAsThePeerLeavingNotAsBadInput() throws Exception {
+        try (var peer = new RawPeer(b.address())) {
+            peer.hello(RawPeer.MAGIC, RawPeer.VERSION, "mallory");
+            peer.expect(RawPeer.HELLO);
+            peer.bye(CloseReason.SHUTDOWN.code(), "going away");
+            List<RawPeer.Received> frames = peer.readUntilClosed();
+            assertTrue(frames.stream().noneMatch(frame -> frame.type() == RawPeer.BYE),
+                    "no BYE back to a peer that left: " + frames);
+        }
+        Await.until("b counts the peer's close", () -> b.net.stats().closes(CloseReason.PEER_CLOSED) == 1);
+        assertEquals(0, b.net.stats().badInputCloses(), b.net.stats().toString());
+        assertEquals(new Text("after the goodbye"), c.node.requestBlocking(ECHO, new Text("after the goodbye")).contents());
+        assertEquals(0, c.net.stats().closes().size(), c.net.stats().toString());
+    }
+
     @Test
     void shouldCloseAConnectionThatSendsAnOversizeFrame() throws Exception {
         try (var attacker = new RawPeer(b.address())) {

@@ -149,6 +149,12 @@ final class Connection implements Runnable {
         writer.resume(link.resumeState());
         writer.flush();
         Frame second = reader.next();
+        if (second instanceof Frame.Bye goodbye) {
+            // The peer may leave at any time, also inside its handshake (it is shutting down, or its
+            // side of the connection failed): that is a close, not bad input.
+            throw new ProtocolException(CloseReason.PEER_CLOSED, "node '" + hello.nodeId() + "' closed the connection"
+                    + " during the handshake: " + CloseReason.ofCode(goodbye.code()) + ": " + goodbye.text());
+        }
         if (!(second instanceof Frame.Resume theirs)) {
             throw new ProtocolException(CloseReason.BAD_HANDSHAKE, "expected RESUME after HELLO, got "
                     + second.getClass().getSimpleName());
