@@ -6,6 +6,7 @@ import io.etherware.core.component.ComponentState;
 import io.etherware.core.message.ContentsTypes;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
+import java.util.concurrent.atomic.AtomicInteger;
 
 /**
  * Test component for migrations: counts {@link Seq} messages and reports each to {@link #SINK} as
@@ -82,6 +83,24 @@ public class ReportingCounter implements Component {
         }
     }
 
+    /**
+     * Its snapshot takes {@link #SNAPSHOT_MS}: the source of a migration that is killed while it
+     * takes the state to ship.
+     */
+    public static class SlowSnapshot extends ReportingCounter {
+        public static final long SNAPSHOT_MS = 1_500;
+
+        @Override
+        public ComponentState snapshot() {
+            try {
+                Thread.sleep(SNAPSHOT_MS);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+            return super.snapshot();
+        }
+    }
+
     /** Its restore always throws: a migration to it must roll back. */
     public static class FailingRestore extends ReportingCounter {
         @Override
@@ -93,9 +112,12 @@ public class ReportingCounter implements Component {
     /** Its restore takes {@link #RESTORE_MS}: the target of a migration that does not answer in time. */
     public static class SlowRestore extends ReportingCounter {
         public static final long RESTORE_MS = 1_500;
+        /** How many restores began in this JVM. */
+        public static final AtomicInteger restoring = new AtomicInteger();
 
         @Override
         public void restore(ComponentState state) throws Exception {
+            restoring.incrementAndGet();
             Thread.sleep(RESTORE_MS);
             super.restore(state);
         }

@@ -35,7 +35,9 @@ import java.util.Set;
  *       and the component resumes at the source;</li>
  *   <li>{@code handoverWait} 5 s: how long a target keeps a migrated component held, waiting for the
  *       source's hand-over, before it gives the migration up and removes the component (the source
- *       has then resumed it after its own step timeout);</li>
+ *       has then resumed it after its own step timeout, or died); an instance prepared for a
+ *       migration whose state never came is discarded after {@code settleWait + 2 ×
+ *       migrationStepTimeout + handoverWait} (9.1 s by default);</li>
  *   <li>{@code maxQueuedOperations} 8: how many upgrades and migrations away from this node may
  *       wait behind the one in progress (they run one at a time, in arrival order), and how many
  *       migration PREPARE steps into it may wait behind the one being loaded; a request beyond

@@ -12,6 +12,7 @@ final class ManagementCounters {
     final LongAdder upgraded = new LongAdder();
     final LongAdder migrated = new LongAdder();
     final LongAdder migratedIn = new LongAdder();
+    final LongAdder abandonedIn = new LongAdder();
     final LongAdder failed = new LongAdder();
     final LongAdder refused = new LongAdder();
     final LongAdder busy = new LongAdder();

@@ -179,7 +179,8 @@ public final class ManagementService implements Component {
         // The answers of steps into this node must not wait for this node's own migration away,
         // which may be waiting for the other node's answers.
         this.migrations = new Migrations(running, worker, steps, new MigrationSource(kernel, config, network, access),
-                new MigrationTarget(kernel, config, loader, steps.continuations(), jarLoaders::installed));
+                new MigrationTarget(kernel, config, loader, steps.continuations(), jarLoaders::installed,
+                        counters.abandonedIn));
     }
 
     @Override
@@ -244,6 +245,18 @@ public final class ManagementService implements Component {
      */
     public long migratedInCount() {
         return counters.migratedIn.sum();
+    }
+
+    /**
+     * Migrations into this node that were begun here and given up, because their source did not
+     * continue them in time: an instance prepared but never installed, or a component installed
+     * but never handed over (see {@link ManagementConfig} for the waits). Nothing of them stays
+     * registered. Any thread.
+     *
+     * @return the count so far (the instances that restarts make after {@link #install} share it)
+     */
+    public long abandonedInCount() {
+        return counters.abandonedIn.sum();
     }
 
     /**

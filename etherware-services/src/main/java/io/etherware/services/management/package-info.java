@@ -104,8 +104,13 @@
  *       <td>the component is gone: its state and the messages forwarded to it lived only
  *       there</td></tr>
  *   <tr><td>source</td><td>any step</td>
- *       <td>the component is gone: a copy installed at the target is held, never handed over,
- *       and removed after the hand-over wait</td></tr>
+ *       <td>the component is gone with its node, as without a migration. The target keeps
+ *       nothing: an instance prepared for it is discarded after {@code settleWait + 2 ×
+ *       migrationStepTimeout + handoverWait}, a copy installed there is held, never handed over,
+ *       and removed after the hand-over wait; either is counted
+ *       ({@link io.etherware.services.management.ManagementService#abandonedInCount()}) and no
+ *       arrival profile stays (tested with the source's JVM killed in PREPARE, in its snapshot and
+ *       in INSTALL)</td></tr>
  * </table>
  * The last two are known limits. The target cannot tell a dead source from one it cannot reach,
  * which resumes the component itself after its step timeout, so releasing its copy on silence

@@ -6,7 +6,9 @@ import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import example.counter.ReportingCounter;
+import io.etherware.core.component.RequestFailedException;
 import io.etherware.core.kernel.Endpoint;
+import io.etherware.core.kernel.ProfileResolutionException;
 import io.etherware.core.message.Profile;
 import io.etherware.testkit.Await;
 import java.io.BufferedReader;
@@ -29,7 +31,9 @@ import org.junit.jupiter.params.provider.CsvSource;
  * Migration between two JVMs on loopback: the second JVM ({@link MigrationPeer}) runs on the same
  * class path. A stateful counter under a steady stream of sequence-numbered messages moves there
  * and back with nothing lost, duplicated or reordered; when the target JVM is killed inside the
- * PREPARE or the INSTALL step of a migration, the counter resumes at the source with nothing lost.
+ * PREPARE or the INSTALL step of a migration, the counter resumes at the source with nothing lost;
+ * when the source JVM is killed inside the PREPARE, snapshot or INSTALL step, the target gives the
+ * migration up and keeps nothing of it.
  */
 class MigrationAcrossJvmsIT {
 
@@ -154,6 +158,71 @@ class MigrationAcrossJvmsIT {
             } finally {
                 b.destroyForcibly();
             }
+        }
+    }
+
+    /**
+     * The source JVM is killed (SIGKILL) inside a step of a migration to this JVM: while this node
+     * constructs the new instance (PREPARE), while the source takes the state (the snapshot), or
+     * while this node restores it (INSTALL). The component dies with its node, as it would without
+     * a migration (its state was never handed over, so this node must not run it); this node gives
+     * the migration up after its waits, counts it as abandoned, and keeps nothing of it: no
+     * prepared instance, no held copy, no arrival profile.
+     */
+    @ParameterizedTest(name = "source killed in {0}")
+    @CsvSource(nullValues = "none", value = {
+        "PREPARE, none, example.counter.ReportingCounter$SlowConstruct",
+        "SNAPSHOT, example.counter.ReportingCounter$SlowSnapshot, none",
+        "INSTALL, none, example.counter.ReportingCounter$SlowRestore"})
+    void shouldKeepNothingOfTheMigrationWhenTheSourceJvmIsKilledDuringAStep(String step, String classAtSource,
+            String classHere) throws Exception {
+        try (var a = sourceWithCounter()) {
+            Process b = startPeer(a, "jvm-b");
+            try {
+                Management.migrate(a.node, "jvm-a", new MigrateRequest(COUNTER, "jvm-b", classAtSource, null, null),
+                        Duration.ofSeconds(60)).get(60, TimeUnit.SECONDS);
+                assertInstanceOf(Endpoint.Remote.class, a.node.registry().resolve(COUNTER), "B hosts the counter");
+
+                // B moves it back here, and dies in the middle.
+                int restoresBefore = ReportingCounter.SlowRestore.restoring.get();
+                var back = Management.migrate(a.node, "jvm-b", new MigrateRequest(COUNTER, "jvm-a", classHere, null,
+                        null), Duration.ofSeconds(5));
+                if (step.equals("INSTALL")) {
+                    Await.until("the restore here began", () -> ReportingCounter.SlowRestore.restoring.get() > restoresBefore);
+                } else {
+                    Thread.sleep(500); // inside the 1.5 s step
+                }
+                b.destroyForcibly();
+                assertTrue(b.waitFor(30, TimeUnit.SECONDS), "the source JVM is gone");
+                if (step.equals("INSTALL")) {
+                    Await.until("the held copy registered here", () -> arrivalProfiles(a).size() == 1);
+                }
+
+                Await.until(() -> step + ": abandoned " + a.management.abandonedInCount() + ", arrival profiles "
+                        + arrivalProfiles(a), 30_000, () -> a.management.abandonedInCount() == 1);
+                assertEquals(List.of(), arrivalProfiles(a), "no arrival profile stays");
+                assertEquals(0, a.management.migratedInCount(), "nothing was handed over here");
+                assertTrue(!(resolveOrNull(a, COUNTER) instanceof Endpoint.Local), step + ": this node does not run"
+                        + " the counter");
+                var error = assertThrows(ExecutionException.class, () -> back.get(60, TimeUnit.SECONDS));
+                assertInstanceOf(RequestFailedException.class, error.getCause(), "the request to the dead node"
+                        + " fails when it times out");
+            } finally {
+                b.destroyForcibly();
+            }
+        }
+    }
+
+    private static List<Profile> arrivalProfiles(MigrationNode node) {
+        return node.node.registry().profiles().stream()
+                .filter(profile -> profile.role().equals("etherware.arrival")).toList();
+    }
+
+    private static Endpoint resolveOrNull(MigrationNode node, Profile profile) {
+        try {
+            return node.node.registry().resolve(profile);
+        } catch (ProfileResolutionException e) {
+            return null;
         }
     }
 }

@@ -18,6 +18,7 @@ import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.Executor;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicReference;
+import java.util.concurrent.atomic.LongAdder;
 import java.util.function.BiConsumer;
 import java.util.function.Supplier;
 import org.slf4j.Logger;
@@ -29,7 +30,13 @@ import org.slf4j.LoggerFactory;
  * migration's arrival profile ({@link ComponentHost#addHeld}), {@link Phase#HANDOVER} admits it under its
  * own profile and releases it ({@link ComponentHost#admit}) once the source has forwarded the messages it
  * held. A component installed but never handed over within
- * {@link ManagementConfig#handoverWaitNs()} is removed again: its source has resumed it by then.
+ * {@link ManagementConfig#handoverWaitNs()} is removed again: its source has resumed it by then
+ * (or died with it). An instance prepared but never installed is discarded after
+ * {@code settleWait + 2 × migrationStepTimeout + handoverWait}: by then its source has resumed the
+ * component (it waits at most {@code settleWait} and a step for the hold, a step for the snapshot
+ * and a step for the install's answer) or died. Either way the migration counts as abandoned
+ * ({@link io.etherware.services.management.ManagementService#abandonedInCount()}), and nothing of
+ * it stays here.
  *
  * <p>Threading: {@link #prepare} loads code and runs constructors, so it runs on the management
  * service's thread for steps into this node (not its worker, which may be busy with a migration
@@ -56,20 +63,33 @@ public final class MigrationTarget {
     private final Executor continuations;
     /** Told of the jar loader (or null) behind a component that now runs here. */
     private final BiConsumer<Profile, URLClassLoader> installed;
+    /** Counts the migrations into this node given up here (prepared or installed, never handed over). */
+    private final LongAdder abandoned;
     private final Map<Profile, Prepared> prepared = new ConcurrentHashMap<>();
     private final Map<Profile, Arrived> arrived = new ConcurrentHashMap<>();
 
     /**
      * @param continuations where answers that wait are assembled (the service's steps thread)
      * @param installed     told when a migrated component is handed over, with its jar loader
+     * @param abandoned     counts the migrations given up here
      */
     public MigrationTarget(ComponentHost kernel, ManagementConfig config, ImplementationLoader loader,
-                           Executor continuations, BiConsumer<Profile, URLClassLoader> installed) {
+                           Executor continuations, BiConsumer<Profile, URLClassLoader> installed,
+                           LongAdder abandoned) {
         this.kernel = kernel;
         this.config = config;
         this.loader = loader;
         this.continuations = continuations;
         this.installed = installed;
+        this.abandoned = abandoned;
+    }
+
+    /**
+     * How long a prepared instance waits for its INSTALL: longer than its source waits for the
+     * hold, the snapshot and the install's answer, plus the hand-over wait for a late step.
+     */
+    static long preparedKeepNs(ManagementConfig config) {
+        return config.settleWaitNs() + 2 * config.migrationStepTimeoutNs() + config.handoverWaitNs();
     }
 
     /** Steps thread: loads the class and constructs the instance; a later prepare of the profile replaces it. */
@@ -91,10 +111,13 @@ public final class MigrationTarget {
         }
         Component instance = loaded.factory().get();
         long loadNs = kernel.clock().nanoTime() - startNs;
-        Prepared previous = prepared.put(profile, new Prepared(step.fromNode(), loaded, instance, loadNs));
+        var ready = new Prepared(step.fromNode(), loaded, instance, loadNs);
+        Prepared previous = prepared.put(profile, ready);
         if (previous != null) {
             previous.loaded().discard();
         }
+        CompletableFuture.delayedExecutor(preparedKeepNs(config), TimeUnit.NANOSECONDS)
+                .execute(() -> forgetPrepared(profile, ready));
         return new MigrationStepDone(Phase.PREPARE, profile, loaded.type().getName(), loadNs, -1);
     }
 
@@ -192,18 +215,33 @@ public final class MigrationTarget {
         }
     }
 
-    /** The hand-over did not come in time: the source resumed the component; remove this copy. */
+    /** The INSTALL did not come in time: the source resumed the component, or died; drop the instance. */
+    private void forgetPrepared(Profile profile, Prepared ready) {
+        if (!prepared.remove(profile, ready)) {
+            return; // installed, or replaced by a later PREPARE
+        }
+        abandoned.increment();
+        log.warn("node {}: the instance prepared for migrated '{}' was not installed within {} ms; discarding it (its"
+                + " source, node '{}', resumed it or is gone)", kernel.nodeId(), profile,
+                TimeUnit.NANOSECONDS.toMillis(preparedKeepNs(config)), ready.fromNode());
+        ready.loaded().discard();
+    }
+
+    /** The hand-over did not come in time: the source resumed the component (or died); remove this copy. */
     private void giveUp(Profile profile, Arrived arrival) {
         if (!arrived.remove(profile, arrival)) {
             return;
         }
-        log.warn("node {}: migrated '{}' was not handed over within {} ms; removing it (its source resumed it)",
-                kernel.nodeId(), profile, TimeUnit.NANOSECONDS.toMillis(config.handoverWaitNs()));
+        log.warn("node {}: migrated '{}' was not handed over within {} ms; removing it (its source, node '{}',"
+                + " resumed it or is gone)", kernel.nodeId(), profile,
+                TimeUnit.NANOSECONDS.toMillis(config.handoverWaitNs()), arrival.fromNode());
         try {
+            // Unregistered at once; stopped at its next boundary.
             kernel.removeAsync(arrival.arrival()).whenComplete((done, error) -> arrival.loaded().discard());
         } catch (RuntimeException e) {
             log.warn("node {}: removing migrated '{}' failed: {}", kernel.nodeId(), profile, e.toString());
         }
+        abandoned.increment();
     }
 
     /**
