@@ -59,7 +59,10 @@ import java.util.concurrent.atomic.AtomicReference;
  * <h2>A migration</h2>
  * The steps and the ordering argument are in the package documentation. At the source, the whole
  * migration runs on the worker, which waits for the target's answers (so a node runs one management
- * operation at a time; the next wait in the same queue). At the target, PREPARE (loading,
+ * operation at a time; the next wait in the same queue). From the hold to the hand-over (the gap)
+ * the worker runs at the priority of the dispatcher the request's QoS is placed on, with the
+ * node's {@code RealtimeScheduler} (SCHED_FIFO 80 for a HIGH request on Table II), as an upgrade's
+ * swap does, and at its ordinary priority before and after. At the target, PREPARE (loading,
  * constructing) runs on a second thread of the service, with a queue of the same bound, and the
  * answers that wait for a first message are assembled there too: two nodes migrating components
  * to each other at once each serve the other's steps while their own migration waits; INSTALL

@@ -66,7 +66,7 @@ final class Migrations {
         MigrationResult result;
         try {
             Shell shell = service.localShell(request.target());
-            result = migrationSource.migrate(shell, request, receivedNs);
+            result = migrationSource.migrate(shell, request, message.qos(), receivedNs);
         } catch (LoadFailure e) {
             permit.release();
             failMigration(message, request.target(), e.reason(), e.getMessage());

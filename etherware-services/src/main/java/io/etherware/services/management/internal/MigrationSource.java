@@ -7,6 +7,7 @@ import io.etherware.core.kernel.ComponentHost;
 import io.etherware.core.kernel.RemoteRoute;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
+import io.etherware.core.message.QoS;
 import io.etherware.services.management.Management;
 import io.etherware.services.management.ManagementConfig;
 import io.etherware.services.management.ManagementFailure;
@@ -33,8 +34,9 @@ import org.slf4j.LoggerFactory;
  *
  * <p>Threading: {@link #migrate} blocks for the target's answers, so it runs on the management
  * service's worker thread, never on a dispatcher; one migration at a time per service. From the
- * hold to the hand-over's answer that thread runs at the node's highest real-time dispatcher's
- * priority ({@link GapPriority}), so that no step of the gap waits for an ordinary thread's turn.
+ * hold to the hand-over's answer that thread runs at the priority of the dispatcher that the
+ * request's QoS gives it ({@link GapPriority}), as an upgrade's swap does, so that no step of the
+ * gap waits for an ordinary thread's turn.
  */
 public final class MigrationSource {
 
@@ -48,7 +50,6 @@ public final class MigrationSource {
     private final ManagementConfig config;
     private final NetworkMessenger network;
     private final AccessControl access;
-    private final GapPriority gapPriority;
 
     /**
      * @param network the node's messenger, for the route to the target and its clock; null on a
@@ -61,16 +62,17 @@ public final class MigrationSource {
         this.config = config;
         this.network = network;
         this.access = access;
-        this.gapPriority = GapPriority.of(kernel);
     }
 
     /**
      * Moves the component of {@code shell} as {@code request} asks. Worker thread.
      *
+     * @param qos        the request's QoS: the gap runs at the priority of its dispatcher
+     *                   ({@link GapPriority})
      * @param receivedNs when the request reached the management service
      * @throws LoadFailure if the migration failed; the component then runs here as before
      */
-    public MigrationResult migrate(Shell shell, MigrateRequest request, long receivedNs) throws LoadFailure {
+    public MigrationResult migrate(Shell shell, MigrateRequest request, QoS qos, long receivedNs) throws LoadFailure {
         String toNode = request.toNode();
         Profile profile = shell.profile();
         if (toNode.equals(kernel.nodeId())) {
@@ -92,13 +94,13 @@ public final class MigrationSource {
         step(toNode, new MigrationStep(Phase.PREPARE, profile, kernel.nodeId(), arrival, className, request.jarPath(),
                 request.configuration(), null, 0), stepNs);
         long quiesceStartNs = kernel.clock().nanoTime();
-        try (var raised = gapPriority.raise()) {
+        try (var raised = GapPriority.of(kernel, Management.profileOf(kernel.nodeId()), qos).raise()) {
             return moveHeld(profile, toNode, className, arrival, receivedNs, prepareStartNs, quiesceStartNs);
         }
     }
 
     /**
-     * The migration gap, at {@link #gapPriority}: holds the component here, ships its state,
+     * The migration gap, at the request's priority: holds the component here, ships its state,
      * relocates it and hands it over.
      */
     private MigrationResult moveHeld(Profile profile, String toNode, String className, Profile arrival,

@@ -32,9 +32,9 @@ import org.slf4j.LoggerFactory;
  * held. A component installed but never handed over within
  * {@link ManagementConfig#handoverWaitNs()} is removed again: its source has resumed it by then
  * (or died with it). An instance prepared but never installed is discarded after
- * {@code settleWait + 2 × migrationStepTimeout + handoverWait}: by then its source has resumed the
- * component (it waits at most {@code settleWait} and a step for the hold, a step for the snapshot
- * and a step for the install's answer) or died. Either way the migration counts as abandoned
+ * {@code settleWait + 2 × migrationStepTimeout + handoverWait}: by then its source has sent the
+ * INSTALL (it waits at most {@code settleWait} and a step for the hold, then a step for the
+ * snapshot), or resumed the component, or died; the hand-over wait is the margin for a late step. Either way the migration counts as abandoned
  * ({@link io.etherware.services.management.ManagementService#abandonedInCount()}), and nothing of
  * it stays here.
  *
@@ -127,7 +127,8 @@ public final class MigrationTarget {
         Prepared ready = prepared.get(profile);
         if (ready == null) {
             throw new LoadFailure(Reason.BAD_REQUEST, "'" + profile + "' was not prepared on node '" + kernel.nodeId()
-                    + "'; send PREPARE first");
+                    + "', or its preparation was discarded after " + TimeUnit.NANOSECONDS.toMillis(preparedKeepNs(config))
+                    + " ms without an INSTALL; send PREPARE first");
         }
         requireSameSource(step, ready.fromNode());
         if (!prepared.remove(profile, ready)) {

@@ -4,6 +4,9 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assumptions.assumeTrue;
 
 import io.etherware.core.kernel.EtherwareNode;
+import io.etherware.core.message.Criticality;
+import io.etherware.core.message.Profile;
+import io.etherware.core.message.QoS;
 import io.etherware.core.scheduler.FifoScheduler;
 import io.etherware.rt.platform.Platform;
 import io.etherware.rt.platform.SchedulingPolicy;
@@ -82,15 +85,18 @@ class GapPriorityTest {
     }
 
     @Test
-    void shouldTakeTheHighestDispatchersPolicyFromARealtimeSchedulerAndNoneFromAnother() {
-        ThreadSchedulingRule tableII = ThreadSchedulingRule.tableII();
+    void shouldTakeThePolicyOfTheRequestsDispatcherFromARealtimeSchedulerAndNoneFromAnother() {
+        Profile service = Profile.of("etherware.management", "node", "gap-rt");
         try (var realtime = EtherwareNode.builder().nodeId("gap-rt").scheduler(() -> new RealtimeScheduler(
-                RealtimeSchedulerConfig.builder().threadSchedulingRule(tableII).build())).build();
+                RealtimeSchedulerConfig.builder().threadSchedulingRule(ThreadSchedulingRule.tableII()).build())).build();
                 var fifo = EtherwareNode.builder().nodeId("gap-fifo").scheduler(FifoScheduler::new).build()) {
-            assertEquals(tableII.above(0), GapPriority.of(realtime).policy());
-            assertEquals(new ThreadPolicy(SchedulingPolicy.FIFO, 80), GapPriority.of(realtime).policy(),
-                    "Table II's HIGH dispatcher");
-            assertEquals(ThreadPolicy.NON_REALTIME, GapPriority.of(fifo).policy());
+            assertEquals(new ThreadPolicy(SchedulingPolicy.FIFO, 80),
+                    GapPriority.of(realtime, service, QoS.of(Criticality.HIGH)).policy(), "Table II's dispatcher 1");
+            assertEquals(new ThreadPolicy(SchedulingPolicy.FIFO, 60),
+                    GapPriority.of(realtime, service, QoS.of(Criticality.LOW)).policy(), "Table II's dispatcher 3");
+            assertEquals(ThreadPolicy.NON_REALTIME, GapPriority.of(realtime, service, QoS.NONE).policy(),
+                    "a request without QoS: dispatcher 0, ordinary");
+            assertEquals(ThreadPolicy.NON_REALTIME, GapPriority.of(fifo, service, QoS.of(Criticality.HIGH)).policy());
         }
     }
 }
