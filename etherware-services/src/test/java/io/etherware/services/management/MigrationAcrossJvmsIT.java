@@ -165,7 +165,7 @@ class MigrationAcrossJvmsIT {
      * The source JVM is killed (SIGKILL) inside a step of a migration to this JVM: while this node
      * constructs the new instance (PREPARE), while the source takes the state (the snapshot), or
      * while this node restores it (INSTALL). The component dies with its node, as it would without
-     * a migration (its state was never handed over, so this node must not run it); this node gives
+     * a migration (no hand-over came, so this node must not run it); this node gives
      * the migration up after its waits, counts it as abandoned, and keeps nothing of it: no
      * prepared instance, no held copy, no arrival profile.
      */

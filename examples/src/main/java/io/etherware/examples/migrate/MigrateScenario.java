@@ -205,9 +205,10 @@ public final class MigrateScenario {
                 + " node 2 in a second JVM (pid " + node2.pid() + "), TCP on loopback");
         notes.add(String.format(Locale.ROOT, "  controller Ticks from node 1's Notifier: sent %d, skipped %d late,"
                 + " %d busy and %d undeliverable; cycles recorded %d (dropped %d); node 1's scheduler-counted deadline"
-                + " misses %d; DSP board late cycles %d", ticks.ticksSent(), ticks.skippedLate(), ticks.skippedBusy(),
-                ticks.skippedUndeliverable(), cycles.cycles().size(), cycles.dropped(),
-                scheduler.stats().deadlineMisses(), rig.board().lateCycles()));
+                + " misses %d; DSP board late cycles %d, at most %.1f ms behind the physical clock", ticks.ticksSent(),
+                ticks.skippedLate(), ticks.skippedBusy(), ticks.skippedUndeliverable(), cycles.cycles().size(),
+                cycles.dropped(), scheduler.stats().deadlineMisses(), rig.board().lateCycles(),
+                rig.board().maxLagNs() / 1e6));
         notifier.threadGrant().ifPresent(grant -> notes.add("  " + grant.toLine()));
         threads.grants().forEach(grant -> notes.add("  " + grant.toLine()));
         ScenarioRun run = new ScenarioRun("migrate", "node 2 → node 1 migration", periodNs, originNs, firstReleaseNs,

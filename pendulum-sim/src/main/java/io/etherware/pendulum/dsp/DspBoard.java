@@ -65,6 +65,7 @@ public final class DspBoard implements AutoCloseable {
     private long framesIgnored;
     private long transmitErrors;
     private long lateCycles;
+    private long maxLagNs;
     private boolean linkFailed;
     private boolean lateWarned;
     private long cycleBoardNs;
@@ -190,6 +191,7 @@ public final class DspBoard implements AutoCloseable {
             long lagNs = boardNowNs - plant.timeNs();
             if (lagNs >= config.stepNs()) {
                 lateCycles++;
+                maxLagNs = Math.max(maxLagNs, lagNs);
                 if (lagNs > LATE_WARNING_NS && !lateWarned) {
                     lateWarned = true;
                     LOG.warn("DSP board {} ms behind the physical clock; catching up (reported once)",
@@ -340,6 +342,16 @@ public final class DspBoard implements AutoCloseable {
      */
     public synchronized long lateCycles() {
         return lateCycles;
+    }
+
+    /**
+     * The furthest behind the physical clock a cycle ran (real-time mode): how long the board's
+     * own thread, the plant, was kept from running, by the machine or the JVM (a safepoint).
+     *
+     * @return nanoseconds, 0 if no cycle ran a step or more late
+     */
+    public synchronized long maxLagNs() {
+        return maxLagNs;
     }
 
     /**

@@ -34,7 +34,8 @@ import org.slf4j.LoggerFactory;
  * (or died with it). An instance prepared but never installed is discarded after
  * {@code settleWait + 2 × migrationStepTimeout + handoverWait}: by then its source has sent the
  * INSTALL (it waits at most {@code settleWait} and a step for the hold, then a step for the
- * snapshot), or resumed the component, or died; the hand-over wait is the margin for a late step. Either way the migration counts as abandoned
+ * snapshot), or resumed the component, or died; the hand-over wait is the margin for a late
+ * step. Either way the migration counts as abandoned
  * ({@link io.etherware.services.management.ManagementService#abandonedInCount()}), and nothing of
  * it stays here.
  *
@@ -85,8 +86,8 @@ public final class MigrationTarget {
     }
 
     /**
-     * How long a prepared instance waits for its INSTALL: longer than its source waits for the
-     * hold, the snapshot and the install's answer, plus the hand-over wait for a late step.
+     * How long a prepared instance waits for its INSTALL: as long as its source may wait for the
+     * hold and the snapshot, plus the hand-over wait as the margin for a late step.
      */
     static long preparedKeepNs(ManagementConfig config) {
         return config.settleWaitNs() + 2 * config.migrationStepTimeoutNs() + config.handoverWaitNs();
