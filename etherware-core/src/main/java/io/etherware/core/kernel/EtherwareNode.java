@@ -72,8 +72,8 @@ public final class EtherwareNode implements ComponentHost, AutoCloseable {
     }
 
     /**
-     * Registers the kernel's notices ({@code undeliverable}, {@code request-failed}) in a
-     * contents registry. A node does this for its own registry ({@link #contentsTypes()}); call it
+     * Registers the kernel's notices ({@code undeliverable}, {@code request-failed}) and markers
+     * ({@code order-marker}, see {@link OrderMarker}) in a contents registry. A node does this for its own registry ({@link #contentsTypes()}); call it
      * for a codec built apart from a node that must read a node's notices.
      *
      * @param types a registry for a codec that must read or write the notices

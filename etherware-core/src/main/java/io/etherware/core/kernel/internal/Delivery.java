@@ -1,14 +1,17 @@
 package io.etherware.core.kernel.internal;
 
 import io.etherware.core.kernel.Kernel;
+import io.etherware.core.kernel.OrderMarker;
 import io.etherware.core.kernel.RemoteRoute;
 import io.etherware.core.kernel.RequestFailed;
 import io.etherware.core.kernel.Undeliverable;
 import io.etherware.core.message.Contents;
+import io.etherware.core.message.Criticality;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageId;
 import io.etherware.core.message.Origin;
 import io.etherware.core.message.Profile;
+import io.etherware.core.message.QoS;
 import io.etherware.core.message.Tick;
 import io.etherware.core.scheduler.Job;
 import io.etherware.core.scheduler.Scheduler;
@@ -207,6 +210,26 @@ final class Delivery {
         send.accept(new Message(message.sender(), nodeProfile, clock.epochNanos(), message.qos(),
                 new Undeliverable(message.profile().toString(), message.messageId().toString(), reason),
                 newMessageId.get(), message.messageId()));
+    }
+
+    /**
+     * An {@link OrderMarker}'s turn came at its component: answers the node it came from (the
+     * connection's word, never a profile the message names); one made on this node is not
+     * answered, as nothing here sends one.
+     */
+    void answerMarker(Message marker) {
+        Origin origin = marker.origin();
+        if (origin == null) {
+            return;
+        }
+        try {
+            send.accept(new Message(Profile.of(nodeProfile.role(), "id", origin.nodeId()), nodeProfile,
+                    clock.epochNanos(), QoS.of(Criticality.HIGH), marker.contents(), newMessageId.get(),
+                    marker.messageId()));
+        } catch (RuntimeException e) {
+            log.debug("node {}: could not answer order marker {} of node '{}': {}", nodeId, marker.messageId(),
+                    origin.nodeId(), e.toString());
+        }
     }
 
     /** Jobs made so far, for the node's stats. */

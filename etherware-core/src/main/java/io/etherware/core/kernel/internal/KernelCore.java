@@ -10,6 +10,7 @@ import io.etherware.core.kernel.Kernel;
 import io.etherware.core.kernel.MessageTap;
 import io.etherware.core.kernel.NodeConfig;
 import io.etherware.core.kernel.NodeStats;
+import io.etherware.core.kernel.OrderMarker;
 import io.etherware.core.kernel.ProfileRegistry;
 import io.etherware.core.kernel.RemoteRoute;
 import io.etherware.core.kernel.RequestFailed;
@@ -97,10 +98,14 @@ public final class KernelCore implements ComponentHost, JobRunner {
         registerContents(config.contentsTypes());
     }
 
-    /** Registers the kernel's notices ({@code undeliverable}, {@code request-failed}) in {@code types}. */
+    /**
+     * Registers the kernel's notices ({@code undeliverable}, {@code request-failed}) and markers
+     * ({@code order-marker}) in {@code types}.
+     */
     public static void registerContents(ContentsTypes types) {
         types.register("undeliverable", Undeliverable.class);
         types.register("request-failed", RequestFailed.class);
+        types.register("order-marker", OrderMarker.class);
     }
 
     // ---------------------------------------------------------------- Kernel

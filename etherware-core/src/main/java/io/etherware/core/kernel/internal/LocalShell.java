@@ -4,6 +4,7 @@ import io.etherware.core.component.Component;
 import io.etherware.core.component.ComponentState;
 import io.etherware.core.component.Shell;
 import io.etherware.core.kernel.Endpoint;
+import io.etherware.core.kernel.OrderMarker;
 import io.etherware.core.kernel.SupervisionPolicy;
 import io.etherware.core.kernel.SwapTimings;
 import io.etherware.core.message.Message;
@@ -376,6 +377,10 @@ public final class LocalShell implements Shell {
             } else {
                 delivery.notRunning(this, message);
             }
+            return;
+        }
+        if (message.contents() instanceof OrderMarker) {
+            delivery.answerMarker(message); // its turn: what its sender sent before it has been handled
             return;
         }
         logic.handle(message, nowNs);
