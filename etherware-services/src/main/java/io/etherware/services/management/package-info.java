@@ -133,11 +133,19 @@
  * and forwards them, before it switches. The release waits for the forwarded count, because the
  * HANDOVER, sent at HIGH criticality, may overtake less critical forwarded messages in a
  * backlogged queue. Order is per sender and
- * urgency, as everywhere in the kernel. Known limit: a third node that sent to the source just
- * before learning of the move (its message crossing the source's announcement) may see that message
- * handled after one it then sent to the target directly; closing it needs per-sender sequence
- * numbers. A message forwarded after its stream broke for good is reported undeliverable to its
- * sender, as any message on that link. A component that always has a request in flight (it asks
+ * urgency, as everywhere in the kernel.
+ *
+ * <p>A sender on a third node learns of the move only when the source withdraws the profile; its
+ * last messages to the source may then still be on their way there, to be forwarded. Its network
+ * messenger therefore holds its next messages to the profile, on each lane it used, until an
+ * {@link io.etherware.core.kernel.OrderMarker} it sent through the source, behind those messages,
+ * has reached the component and been answered by the kernel hosting it (NETWORK-PROTOCOL.md,
+ * "Order across a move"; the marker follows the component as the messages do, so this holds
+ * through moves in quick succession too). The hold costs that sender one trip through the source
+ * per move; nobody else waits. Tested with a third node streaming bursts to a component moved
+ * thirty times between two others: every message handled once, in order
+ * ({@code MigrationSenderOrderIT}). A message forwarded after its stream broke for good is reported
+ * undeliverable to its sender, as any message on that link. A component that always has a request in flight (it asks
  * again from each reply) is never quiescent: it moves after the settle wait, and the reply then in
  * flight is lost to it.
  *

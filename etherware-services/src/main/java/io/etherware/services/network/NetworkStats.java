@@ -29,11 +29,17 @@ import java.util.Map;
  *                             profile, or one the {@link AnnouncePolicy} does not allow
  * @param inboundPauses        times this node stopped reading from a peer because its messages
  *                             held here reached {@link NetworkConfig#maxInboundBytesPerPeer()}
+ * @param routeFlushes         markers this node sent through the old host of a profile that moved,
+ *                             each holding its later messages to the profile on one lane until the
+ *                             new host had every earlier one (order per sender across a migration)
+ * @param routeFlushTimeouts   of those, markers no host answered in time: the lane was released
+ *                             anyway (the old host died or dropped the marker), logged
  */
 public record NetworkStats(String nodeId, int connectedPeers, long messagesSent, long messagesResent,
                            long messagesReceived, long duplicatesDropped, long overflowDropped, long undeliverable,
                            long connectionsOpened, long handshakesFailed, Map<CloseReason, Long> closes,
-                           long announcementsRefused, long inboundPauses) {
+                           long announcementsRefused, long inboundPauses, long routeFlushes,
+                           long routeFlushTimeouts) {
 
     /**
      * Copies {@code closes}.

@@ -31,24 +31,37 @@ final class SeqStream implements AutoCloseable {
     private final EtherwareNode node;
     private final Profile target;
     private final long periodNs;
+    private final int burst;
     private volatile boolean running = true;
     private volatile long sent;
     private final Thread sender;
 
     /** Adds the sink to {@code node} and starts sending to {@code target} every {@code periodNs}. */
     SeqStream(EtherwareNode node, Profile target, long periodNs) {
+        this(node, target, periodNs, 1);
+    }
+
+    /**
+     * Adds the sink to {@code node} and starts sending to {@code target} {@code burst} messages back
+     * to back every {@code periodNs}: consecutive messages then leave microseconds apart, closer than
+     * a network hop, which is what can overtake a message on a longer path.
+     */
+    SeqStream(EtherwareNode node, Profile target, long periodNs, int burst) {
         this.node = node;
         this.target = target;
         this.periodNs = periodNs;
+        this.burst = burst;
         node.add(ReportingCounter.SINK, () -> (message, context) -> reports.add(message));
         this.sender = Thread.ofPlatform().daemon().name("seq-stream").start(this::send);
     }
 
     private void send() {
         long next = System.nanoTime();
-        for (long i = 0; running; i++) {
-            node.send(target, new Seq(i), QOS);
-            sent = i + 1;
+        for (long i = 0; running; ) {
+            for (int k = 0; k < burst; k++, i++) {
+                node.send(target, new Seq(i), QOS);
+            }
+            sent = i;
             next += periodNs;
             LockSupport.parkNanos(Math.max(0, next - System.nanoTime()));
         }
@@ -107,9 +120,20 @@ final class SeqStream implements AutoCloseable {
             if (counted.count() != i + 1 || counted.sequence() != i) {
                 throw new AssertionError("the " + (i + 1) + "th handling was " + counted + ": expected sequence " + i
                         + " as count " + (i + 1) + " (lost, duplicated or reordered, or the count did not continue);"
-                        + " handlings around it: " + around(i));
+                        + " handlings around it: " + around(i) + "; sequence " + i + " was handled " + whereIs(i));
             }
         }
+    }
+
+    private String whereIs(long sequence) {
+        var text = new StringBuilder();
+        for (Message report : reports) {
+            Counted counted = (Counted) report.contents();
+            if (counted.sequence() == sequence) {
+                text.append(" as count ").append(counted.count()).append(" at ").append(report.messageId().nodeId());
+            }
+        }
+        return text.isEmpty() ? "never" : text.toString().strip();
     }
 
     private String around(int index) {

@@ -1,5 +1,6 @@
 package io.etherware.services.network.internal;
 
+import io.etherware.core.kernel.OrderMarker;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageFormatException;
 import io.etherware.core.message.Origin;
@@ -203,6 +204,10 @@ final class ConnectionInput {
 
     /** Hands a message from the peer, its origin set, to the kernel. */
     private void deliverLocally(Message message) {
+        if (message.contents() instanceof OrderMarker marker && message.isReply()) {
+            context.flushes().answered(marker.token()); // a marker of this node's came through
+            return;
+        }
         try {
             context.kernel().send(message);
             context.counters().received.increment();

@@ -18,6 +18,8 @@ final class Counters {
     final LongAdder handshakesFailed = new LongAdder();
     final LongAdder announcementsRefused = new LongAdder();
     final LongAdder inboundPauses = new LongAdder();
+    final LongAdder routeFlushes = new LongAdder();
+    final LongAdder routeFlushTimeouts = new LongAdder();
     final java.util.concurrent.atomic.AtomicLong handshakesEvicted = new java.util.concurrent.atomic.AtomicLong();
     private final LongAdder[] closes = new LongAdder[CloseReason.values().length];
 
@@ -41,6 +43,6 @@ final class Counters {
         }
         return new NetworkStats(nodeId, connectedPeers, sent.sum(), resent.sum(), received.sum(), duplicates.sum(),
                 overflowDropped.sum(), undeliverable.sum(), opened.sum(), handshakesFailed.sum(), byReason,
-                announcementsRefused.sum(), inboundPauses.sum());
+                announcementsRefused.sum(), inboundPauses.sum(), routeFlushes.sum(), routeFlushTimeouts.sum());
     }
 }

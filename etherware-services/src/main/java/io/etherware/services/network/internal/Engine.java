@@ -77,7 +77,6 @@ public final class Engine {
         this.nodeId = kernel.nodeId();
         this.incarnation = NetworkContext.nonZero(new SecureRandom().nextLong());
         this.networkTime = new NetworkTime(kernel.clock(), config.timeWindowSize(), NetworkTime.DEFAULT_MIN_DRIFT_SPAN);
-        this.routes = new RouteTable(kernel.registry(), config.announcePolicy(), counters.announcementsRefused);
         this.control = new ScheduledThreadPoolExecutor(1, task -> {
             Thread thread = new Thread(task, "etherware-net-" + nodeId + "-control");
             thread.setDaemon(true);
@@ -88,8 +87,12 @@ public final class Engine {
         for (int lane = 0; lane < config.lanes(); lane++) {
             lanes.add(IoThreads.of(kernel, config, lane));
         }
-        this.context = new NetworkContext(nodeId, incarnation, kernel, config, counters, networkTime,
-                new Losses(kernel, counters), lanes, control, config.codecFor(kernel));
+        var losses = new Losses(kernel, counters);
+        var flushes = new RouteFlushes(kernel, control, losses, counters, config.lanes());
+        this.routes = new RouteTable(kernel.registry(), config.announcePolicy(), counters.announcementsRefused, flushes,
+                control);
+        this.context = new NetworkContext(nodeId, incarnation, kernel, config, counters, networkTime, losses, lanes,
+                control, config.codecFor(kernel), flushes);
         this.admission = new Admission(context);
         this.tick = new ControlTick(context, dialers, peers, toReconcile, routes, stateChanged);
     }

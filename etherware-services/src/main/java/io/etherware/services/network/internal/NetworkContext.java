@@ -24,10 +24,11 @@ import java.util.concurrent.ThreadLocalRandom;
  * @param lanes       each lane's thread policy and CPUs, by lane
  * @param control     the control thread, for work a caller must not wait for
  * @param codec       encodes and decodes the messages ({@link NetworkConfig#codecFor})
+ * @param flushes     the markers that keep a sender's order when a profile moves ({@link SenderOrder})
  */
 record NetworkContext(String nodeId, long incarnation, Kernel kernel, NetworkConfig config, Counters counters,
                       NetworkTime networkTime, Losses losses, List<IoThreads> lanes, Executor control,
-                      io.etherware.core.codec.MessageCodec codec) {
+                      io.etherware.core.codec.MessageCodec codec, RouteFlushes flushes) {
 
     NetworkContext {
         lanes = List.copyOf(lanes);
@@ -35,7 +36,12 @@ record NetworkContext(String nodeId, long incarnation, Kernel kernel, NetworkCon
 
     /** The lane that carries a message of {@code criticality}: HIGH and MIDDLE on 0, LOW and NONE on 1. */
     int laneOf(io.etherware.core.message.Criticality criticality) {
-        return lanes.size() == 1 || criticality.compareTo(io.etherware.core.message.Criticality.MIDDLE) >= 0 ? 0 : 1;
+        return laneOf(lanes.size(), criticality);
+    }
+
+    /** {@link #laneOf(io.etherware.core.message.Criticality)} for a messenger of {@code laneCount} lanes. */
+    static int laneOf(int laneCount, io.etherware.core.message.Criticality criticality) {
+        return laneCount == 1 || criticality.compareTo(io.etherware.core.message.Criticality.MIDDLE) >= 0 ? 0 : 1;
     }
 
     /** Closes a connection off the calling thread (a sender must not wait for the close). */

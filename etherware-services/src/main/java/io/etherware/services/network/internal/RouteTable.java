@@ -14,6 +14,9 @@ import java.util.LinkedHashSet;
 import java.util.List;
 import java.util.Map;
 import java.util.Set;
+import java.util.concurrent.RejectedExecutionException;
+import java.util.concurrent.ScheduledExecutorService;
+import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.LongAdder;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -29,7 +32,11 @@ import org.slf4j.LoggerFactory;
  * the same profile, the first to announce it keeps it until it withdraws it (or is gone), and a
  * later claim waits in line, logged, never settled by node-id order: a newcomer cannot draw
  * traffic away from the node that serves it. A migration is such a hand-over: the source keeps
- * the route (and relays) until it withdraws the profile, then the target has it.
+ * the route (and relays) until it withdraws the profile, then the target has it; this node's
+ * messages to the profile keep their order across it ({@link SenderOrder}). A profile withdrawn by
+ * its last host stays registered, its messages held, for {@link RouteFlushes#FLUSH_WAIT_NS}: the
+ * target's announcement comes on another connection than the source's withdrawal and may come
+ * second. A peer that is gone for good takes its profiles with it at once.
  *
  * <p>Thread-safety: changes are serialized on this object. Lock order: this, then the registry
  * (whose listener must therefore never call back in here; the messenger queues such work).
@@ -43,6 +50,9 @@ final class RouteTable {
     private final ProfileRegistry registry;
     private final AnnouncePolicy policy;
     private final LongAdder refused;
+    private final RouteFlushes flushes;
+    /** Runs the markers of a change of owner off this table's lock, and the end of a departed profile's wait. */
+    private final ScheduledExecutorService control;
     private final Map<Profile, ProfileRoute> routes = new HashMap<>();
     private final Map<String, Set<Profile>> byPeer = new HashMap<>();
     /** A route a migration registered, to be replaced by the announced route once it leads there. */
@@ -52,19 +62,30 @@ final class RouteTable {
     /** The routes migrations registered, by profile, until the announced route takes over. */
     private final Map<Profile, Provisional> provisional = new HashMap<>();
     private long refusalsLogged;
+    /** Whether the hosts being removed are gone for good (no wait for another to announce). */
+    private boolean forgetting;
 
     /**
      * @param refused counts the announced profiles refused
+     * @param flushes keeps this node's order to a profile whose host changes ({@link SenderOrder})
+     * @param control where the markers of a change of host are sent from
      */
-    RouteTable(ProfileRegistry registry, AnnouncePolicy policy, LongAdder refused) {
+    RouteTable(ProfileRegistry registry, AnnouncePolicy policy, LongAdder refused, RouteFlushes flushes,
+               ScheduledExecutorService control) {
         this.registry = registry;
         this.policy = policy;
         this.refused = refused;
+        this.flushes = flushes;
+        this.control = control;
     }
 
-    /** The route to one remote profile: it follows whichever node currently hosts it. */
+    /**
+     * The route to one remote profile: it follows whichever node currently hosts it, keeping each
+     * sender's order across a change of host ({@link SenderOrder}).
+     */
     static final class ProfileRoute implements RemoteRoute {
         final Profile profile;
+        final SenderOrder order;
         /** Nodes announcing the profile, in the order they claimed it; guarded by the table. */
         final LinkedHashMap<String, Peer> hosts = new LinkedHashMap<>();
         volatile Peer owner;
@@ -74,17 +95,14 @@ final class RouteTable {
         boolean registered;
         boolean shadowLogged;
 
-        ProfileRoute(Profile profile) {
+        ProfileRoute(Profile profile, RouteFlushes flushes) {
             this.profile = profile;
+            this.order = new SenderOrder(this, flushes);
         }
 
         @Override
         public void deliver(Message message) {
-            Peer to = owner;
-            if (to == null) {
-                throw new IllegalStateException("no connected node announces '" + profile + "' now");
-            }
-            to.enqueue(message);
+            order.deliver(message);
         }
 
         @Override
@@ -124,7 +142,7 @@ final class RouteTable {
         }
         for (Profile profile : now) {
             if (!before.contains(profile)) {
-                ProfileRoute route = routes.computeIfAbsent(profile, ProfileRoute::new);
+                ProfileRoute route = routes.computeIfAbsent(profile, p -> new ProfileRoute(p, flushes));
                 if (!route.hosts.isEmpty()) {
                     log.info("profile '{}' announced by node '{}' stays routed to node '{}', which announced it first;"
                             + " the claim waits until that node withdraws it", profile, peer.nodeId,
@@ -152,7 +170,12 @@ final class RouteTable {
 
     /** The peer is gone for good (grace expired, or the messenger closes): unroute its profiles. */
     synchronized void forget(Peer peer) {
-        announce(peer, List.of());
+        forgetting = true;
+        try {
+            announce(peer, List.of());
+        } finally {
+            forgetting = false;
+        }
         provisional.values().removeIf(left -> left.nodeId().equals(peer.nodeId));
     }
 
@@ -197,6 +220,15 @@ final class RouteTable {
     private void sync(ProfileRoute route) {
         route.hostIds = Set.copyOf(route.hosts.keySet());
         if (route.hosts.isEmpty()) {
+            Peer last = route.owner;
+            if (last != null && !forgetting && route.registered && isRegistered(route)) {
+                // Withdrawn by its last host: if the profile moved, its new host's announcement
+                // is on its way on another connection. Hold its messages meanwhile (SenderOrder).
+                route.order.departed(last);
+                schedule(() -> expireDeparted(route));
+                return;
+            }
+            List<Message> held = route.order.abandon();
             route.owner = null;
             if (route.registered && isRegistered(route)) {
                 try {
@@ -207,11 +239,28 @@ final class RouteTable {
             }
             route.registered = false;
             routes.remove(route.profile);
+            if (!held.isEmpty()) {
+                try {
+                    control.execute(() -> route.order.reportLost(held));
+                } catch (RejectedExecutionException e) {
+                    route.order.reportLost(held); // the messenger is closing: report them now
+                }
+            }
             return;
         }
         Peer first = route.hosts.firstEntry().getValue();
-        if (route.owner != first) {
+        Peer before = route.owner;
+        if (before == null && !route.order.isDeparted()) {
             route.owner = first;
+        } else if (before != first) {
+            Runnable markers = route.order.ownerChanged(before, first);
+            if (markers != null) {
+                try {
+                    control.execute(markers);
+                } catch (RejectedExecutionException e) {
+                    // The messenger is closing: forgetting its peers reports what is held.
+                }
+            }
         }
 
         Provisional left = route.registered ? null : provisional.get(route.profile);
@@ -236,6 +285,27 @@ final class RouteTable {
                             + " registration wins ({})", route.profile, first.nodeId, e.getMessage());
                 }
             }
+        }
+    }
+
+    /**
+     * A departed profile's wait is over: if still no node announces it, it is unrouted, and what
+     * was held for it is reported undeliverable to its senders.
+     */
+    private synchronized void expireDeparted(ProfileRoute route) {
+        if (routes.get(route.profile) == route && route.hosts.isEmpty() && route.order.isDeparted()) {
+            log.info("profile '{}' was withdrawn and no node announced it within {} ms: unrouted", route.profile,
+                    TimeUnit.NANOSECONDS.toMillis(RouteFlushes.FLUSH_WAIT_NS));
+            route.owner = null;
+            sync(route); // hosts empty, owner null: unregisters it and reports what was held
+        }
+    }
+
+    private void schedule(Runnable task) {
+        try {
+            control.schedule(task, RouteFlushes.FLUSH_WAIT_NS, TimeUnit.NANOSECONDS);
+        } catch (RejectedExecutionException e) {
+            // The messenger is closing: the routes go with it.
         }
     }
 
