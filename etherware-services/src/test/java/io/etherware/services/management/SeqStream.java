@@ -28,6 +28,8 @@ final class SeqStream implements AutoCloseable {
     static final QoS QOS = QoS.of(Criticality.MIDDLE);
 
     final List<Message> reports = new CopyOnWriteArrayList<>();
+    /** The id each sequence number was sent under, for a failure to name. */
+    private final java.util.Map<Long, io.etherware.core.message.MessageId> ids = new java.util.concurrent.ConcurrentHashMap<>();
     private final EtherwareNode node;
     private final Profile target;
     private final long periodNs;
@@ -59,7 +61,7 @@ final class SeqStream implements AutoCloseable {
         long next = System.nanoTime();
         for (long i = 0; running; ) {
             for (int k = 0; k < burst; k++, i++) {
-                node.send(target, new Seq(i), QOS);
+                ids.put(i, node.send(target, new Seq(i), QOS));
             }
             sent = i;
             next += periodNs;
@@ -125,6 +127,44 @@ final class SeqStream implements AutoCloseable {
         }
     }
 
+    /**
+     * Stops, waits for every report, and checks: each message handled exactly once, the count
+     * continuing, and at most {@code maxLate} messages handled after a later one of the stream.
+     *
+     * @return how many were handled after a later one
+     */
+    int stopAndAssertExactlyOnceAtMostLate(int maxLate) throws InterruptedException {
+        long total = stop();
+        Await.until(total + " reports (have " + reports.size() + ")", () -> reports.size() >= total);
+        List<Counted> handled = handled();
+        assertEquals(total, handled.size(), "each message handled exactly once");
+        var seen = new java.util.BitSet();
+        long highest = -1;
+        var late = new ArrayList<String>();
+        for (int i = 0; i < handled.size(); i++) {
+            Counted counted = handled.get(i);
+            if (counted.count() != i + 1) {
+                throw new AssertionError("the " + (i + 1) + "th handling has count " + counted.count()
+                        + ": the count did not continue; handlings around it: " + around(i));
+            }
+            int sequence = Math.toIntExact(counted.sequence());
+            if (sequence >= total || seen.get(sequence)) {
+                throw new AssertionError("sequence " + sequence + " handled twice or never sent: " + around(i));
+            }
+            seen.set(sequence);
+            if (sequence < highest) {
+                late.add("sequence " + sequence + " handled after " + highest + ":" + around(i) + "; sent as "
+                        + ids.get((long) sequence));
+            }
+            highest = Math.max(highest, sequence);
+        }
+        if (late.size() > maxLate) {
+            throw new AssertionError(late.size() + " messages handled after a later one (at most " + maxLate
+                    + " allowed): " + late.subList(0, Math.min(5, late.size())));
+        }
+        return late.size();
+    }
+
     private String whereIs(long sequence) {
         var text = new StringBuilder();
         for (Message report : reports) {
@@ -133,7 +173,8 @@ final class SeqStream implements AutoCloseable {
                 text.append(" as count ").append(counted.count()).append(" at ").append(report.messageId().nodeId());
             }
         }
-        return text.isEmpty() ? "never" : text.toString().strip();
+        return (text.isEmpty() ? "never" : text.toString().strip()) + " (sent as " + ids.get(sequence) + ", the next as "
+                + ids.get(sequence + 1) + ")";
     }
 
     private String around(int index) {

@@ -101,7 +101,7 @@ class NetworkBadInputIT {
             attacker.hello(RawPeer.MAGIC, RawPeer.VERSION + 1, "mallory");
             RawPeer.Received bye = byeOf(attacker.readUntilClosed());
             assertEquals(CloseReason.PROTOCOL_VERSION.code(), bye.byeCode());
-            assertTrue(bye.byeText().contains("version 2"), bye.byeText());
+            assertTrue(bye.byeText().contains("version 3"), bye.byeText());
         }
         assertOnlyTheOffenderWasClosed(CloseReason.PROTOCOL_VERSION);
     }

@@ -21,7 +21,7 @@ final class RawPeer implements AutoCloseable {
     static final int MAGIC = 0x45575254;
     static final byte HELLO = 1;
     /** The protocol version this peer speaks. */
-    static final int VERSION = 2;
+    static final int VERSION = 3;
     static final byte RESUME = 2;
     static final byte DATA = 3;
     static final byte ACK = 4;

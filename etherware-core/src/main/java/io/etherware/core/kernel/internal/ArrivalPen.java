@@ -46,6 +46,11 @@ final class ArrivalPen {
         return arrival;
     }
 
+    /** Whether the component was admitted: every message the source forwarded to it is in. */
+    boolean isAdmitted() {
+        return admitted;
+    }
+
     /** Whether {@code message} comes to the arrival profile. */
     boolean isArrival(Message message) {
         return message.profile().equals(arrival);

@@ -105,6 +105,20 @@ final class Delivery {
             deliverRemote(message, shell.forwardRoute()); // relocated, and nothing of it is queued here
             return;
         }
+        if (message.contents() instanceof OrderMarker && (shell.pen() == null || shell.pen().isAdmitted())) {
+            // The component is hosted here: whatever its sender sent it before the marker is
+            // queued here already, and the kernel keeps its order from here on, through holds
+            // and moves, before anything the sender sends later. So the marker makes no job.
+            // (One that reaches a component still arriving waits, as a job, for the admission:
+            // this node may have relayed earlier ones to the source, which forwards them back.)
+            shell.leaveQueue();
+            answerMarker(message);
+            ArrivalPen pen = shell.pen();
+            if (pen != null && pen.isArrival(message)) {
+                pen.arrived();
+            }
+            return;
+        }
         countInbound(message, +1);
         long sequence = jobSequence.getAndIncrement();
         if (shell.pens(message)) {
@@ -197,8 +211,12 @@ final class Delivery {
 
     /** Counts an undeliverable message and tells its sender, if there is one to tell. */
     void undeliverable(Message message, String reason) {
-        undeliverable.increment();
         Contents contents = message.contents();
+        if (contents instanceof OrderMarker) {
+            answerMarker(message); // no component to put its sender's later messages behind
+            return;
+        }
+        undeliverable.increment();
         if (message.sender() == null || contents instanceof Undeliverable || contents instanceof RequestFailed) {
             // Nobody to tell, or a notice about a notice (which could loop): the log is the notice.
             log.warn("node {}: message {} to '{}' is undeliverable: {}", nodeId, message.messageId(), message.profile(),
@@ -213,19 +231,19 @@ final class Delivery {
     }
 
     /**
-     * An {@link OrderMarker}'s turn came at its component: answers the node it came from (the
-     * connection's word, never a profile the message names); one made on this node is not
-     * answered, as nothing here sends one.
+     * An {@link OrderMarker} reached the node hosting its component (or no component at all):
+     * answers the node it came from, by the connection's word, never a profile the message names,
+     * to that node's profile, as a message of its own (not a reply: it completes no request). One
+     * that claims to come from this node is not answered: nothing here sends one.
      */
     void answerMarker(Message marker) {
         Origin origin = marker.origin();
-        if (origin == null) {
+        if (origin == null || origin.nodeId().equals(nodeId)) {
             return;
         }
         try {
             send.accept(new Message(Profile.of(nodeProfile.role(), "id", origin.nodeId()), nodeProfile,
-                    clock.epochNanos(), QoS.of(Criticality.HIGH), marker.contents(), newMessageId.get(),
-                    marker.messageId()));
+                    clock.epochNanos(), QoS.of(Criticality.HIGH), marker.contents(), newMessageId.get(), null));
         } catch (RuntimeException e) {
             log.debug("node {}: could not answer order marker {} of node '{}': {}", nodeId, marker.messageId(),
                     origin.nodeId(), e.toString());

@@ -380,7 +380,9 @@ public final class LocalShell implements Shell {
             return;
         }
         if (message.contents() instanceof OrderMarker) {
-            delivery.answerMarker(message); // its turn: what its sender sent before it has been handled
+            // One that reached the component while it arrived, now run after the admission: what
+            // its sender sent before through the source has been forwarded in by now.
+            delivery.answerMarker(message);
             return;
         }
         logic.handle(message, nowNs);

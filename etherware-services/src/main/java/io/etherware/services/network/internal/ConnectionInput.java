@@ -204,8 +204,8 @@ final class ConnectionInput {
 
     /** Hands a message from the peer, its origin set, to the kernel. */
     private void deliverLocally(Message message) {
-        if (message.contents() instanceof OrderMarker marker && message.isReply()) {
-            context.flushes().answered(marker.token()); // a marker of this node's came through
+        if (message.contents() instanceof OrderMarker marker && message.profile().equals(context.kernel().profile())) {
+            context.flushes().answered(marker.token()); // the answer to a marker of this node's
             return;
         }
         try {

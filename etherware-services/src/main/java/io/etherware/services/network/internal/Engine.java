@@ -191,6 +191,7 @@ public final class Engine {
             }
             routes.forget(peer);
         }
+        routes.close();
         join(acceptor);
         try {
             control.awaitTermination(1, TimeUnit.SECONDS);

@@ -12,7 +12,7 @@ import java.util.List;
 sealed interface Frame {
 
     int MAGIC = 0x45575254; // "EWRT"
-    int VERSION = 2;
+    int VERSION = 3;
     /** Most lanes (connections per pair of nodes) a HELLO may state. */
     int MAX_LANES = 8;
 

@@ -59,6 +59,11 @@ final class Peer {
         return List.of(links);
     }
 
+    /** Whether the messenger forgot this peer (gone for good): its queues take nothing more. */
+    synchronized boolean isRetired() {
+        return retired;
+    }
+
     /** Every lane has its connection. */
     boolean isConnected() {
         for (Link link : links) {

@@ -7,6 +7,7 @@ import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
 import io.etherware.core.message.QoS;
 import java.security.SecureRandom;
+import java.util.ArrayList;
 import java.util.List;
 import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.RejectedExecutionException;
@@ -17,8 +18,9 @@ import org.slf4j.LoggerFactory;
 
 /**
  * The markers of {@link SenderOrder}, node-wide: sends them ({@link OrderMarker}, which the kernel
- * hosting the profile answers when the marker's turn comes at the component), and releases a held
- * lane on its marker's answer or after {@link #FLUSH_WAIT_NS}.
+ * that finds the profile's component hosted answers), releases a held lane on its marker's answer
+ * or after {@link #FLUSH_WAIT_NS}, and sends again what a route held when it stops serving its
+ * profile.
  *
  * <p>Trust: the kernel answers a marker to the node the connection vouches for, never to a
  * profile the marker names; an answer only releases this node's own held messages, and only for
@@ -94,10 +96,16 @@ final class RouteFlushes {
         try {
             via.enqueue(marker);
         } catch (RuntimeException e) {
-            pending.remove(token);
-            log.debug("node {}: node '{}' takes no order marker for '{}' now ({}); lane {} goes on at once",
-                    kernel.nodeId(), via.nodeId, profile, e.toString(), lane);
-            return 0;
+            if (via.isRetired()) {
+                pending.remove(token);
+                log.debug("node {}: node '{}' is gone, so nothing of this node's for '{}' is on its way there;"
+                        + " lane {} goes on at once", kernel.nodeId(), via.nodeId, profile, lane);
+                return 0;
+            }
+            // Refused for now (its queue is full): what went before may still be there, so the
+            // lane waits for the timeout rather than overtake it.
+            log.debug("node {}: node '{}' refused the order marker for '{}' ({}); lane {} waits {} ms",
+                    kernel.nodeId(), via.nodeId, profile, e.toString(), lane, TimeUnit.NANOSECONDS.toMillis(FLUSH_WAIT_NS));
         }
         counters.routeFlushes.increment();
         log.debug("node {}: '{}' moved: lane {} held behind order marker {} sent through node '{}'", kernel.nodeId(),
@@ -132,8 +140,22 @@ final class RouteFlushes {
         }
     }
 
-    /** Hands released messages, in order, to the route's owner now; reports any it cannot take. */
-    void deliverReleased(RouteTable.ProfileRoute route, List<Message> messages) {
+    /**
+     * The sends that read a route's old owner did not all finish within {@link #DRAIN_WAIT_NS}: one
+     * may land behind the marker (a thread stalled that long).
+     */
+    void drainTimedOut(Profile profile) {
+        log.warn("node {}: a send to '{}' through its old host did not finish within {} ms; its order marker goes"
+                + " now, and that message may be handled after later ones", kernel.nodeId(), profile,
+                TimeUnit.NANOSECONDS.toMillis(DRAIN_WAIT_NS));
+    }
+
+    /**
+     * Hands released messages, in order, to the route's owner now; returns the reports of any it
+     * could not take, for the caller to run off its monitor (a report is a send to the kernel).
+     */
+    List<Runnable> deliverReleased(RouteTable.ProfileRoute route, List<Message> messages) {
+        var reports = new ArrayList<Runnable>();
         if (!messages.isEmpty() && log.isDebugEnabled()) {
             log.debug("node {}: releasing {} held messages to '{}' ({} .. {}) to node '{}'", kernel.nodeId(),
                     messages.size(), route.profile, messages.getFirst().messageId(), messages.getLast().messageId(),
@@ -147,7 +169,24 @@ final class RouteFlushes {
                 }
                 to.enqueue(message);
             } catch (RuntimeException e) {
-                losses.lost(message, "the route to '" + route.profile + "' refused it: " + e.getMessage());
+                String reason = "the route to '" + route.profile + "' refused it: " + e.getMessage();
+                reports.add(() -> losses.lost(message, reason));
+            }
+        }
+        return reports;
+    }
+
+    /**
+     * Messages held for a route that no longer serves their profile (no node announces it, or a
+     * component here took it over): sent again through the kernel, which finds where the profile
+     * lives now, or reported undeliverable to their senders.
+     */
+    void resend(RouteTable.ProfileRoute route, List<Message> messages) {
+        for (Message message : messages) {
+            try {
+                kernel.send(message);
+            } catch (RuntimeException e) {
+                losses.lost(message, "no node hosts '" + route.profile + "' any more: " + e.getMessage());
             }
         }
     }

@@ -64,6 +64,8 @@ final class RouteTable {
     private long refusalsLogged;
     /** Whether the hosts being removed are gone for good (no wait for another to announce). */
     private boolean forgetting;
+    /** Whether the messenger closes (or a wait ends): a profile no node announces is unrouted at once. */
+    private boolean closing;
 
     /**
      * @param refused counts the announced profiles refused
@@ -221,11 +223,15 @@ final class RouteTable {
         route.hostIds = Set.copyOf(route.hosts.keySet());
         if (route.hosts.isEmpty()) {
             Peer last = route.owner;
-            if (last != null && !forgetting && route.registered && isRegistered(route)) {
+            boolean stillOurs = !forgetting && !closing && route.registered && isRegistered(route);
+            if (stillOurs && route.order.isDeparted()) {
+                return; // waiting for the next host already (expireDeparted ends the wait)
+            }
+            if (last != null && stillOurs) {
                 // Withdrawn by its last host: if the profile moved, its new host's announcement
                 // is on its way on another connection. Hold its messages meanwhile (SenderOrder).
-                route.order.departed(last);
-                schedule(() -> expireDeparted(route));
+                long departure = route.order.departed(last);
+                schedule(() -> expireDeparted(route, departure));
                 return;
             }
             List<Message> held = route.order.abandon();
@@ -241,9 +247,9 @@ final class RouteTable {
             routes.remove(route.profile);
             if (!held.isEmpty()) {
                 try {
-                    control.execute(() -> route.order.reportLost(held));
+                    control.execute(() -> flushes.resend(route, held));
                 } catch (RejectedExecutionException e) {
-                    route.order.reportLost(held); // the messenger is closing: report them now
+                    flushes.resend(route, held); // the messenger is closing: now
                 }
             }
             return;
@@ -292,12 +298,32 @@ final class RouteTable {
      * A departed profile's wait is over: if still no node announces it, it is unrouted, and what
      * was held for it is reported undeliverable to its senders.
      */
-    private synchronized void expireDeparted(ProfileRoute route) {
-        if (routes.get(route.profile) == route && route.hosts.isEmpty() && route.order.isDeparted()) {
+    private synchronized void expireDeparted(ProfileRoute route, long departure) {
+        if (routes.get(route.profile) == route && route.hosts.isEmpty() && route.order.isDeparted(departure)) {
             log.info("profile '{}' was withdrawn and no node announced it within {} ms: unrouted", route.profile,
                     TimeUnit.NANOSECONDS.toMillis(RouteFlushes.FLUSH_WAIT_NS));
-            route.owner = null;
-            sync(route); // hosts empty, owner null: unregisters it and reports what was held
+            unrouteDeparted(route);
+        }
+    }
+
+    /** Ends a departed profile's wait: unregisters it; what was held is sent again or reported. */
+    private void unrouteDeparted(ProfileRoute route) {
+        boolean wasClosing = closing;
+        closing = true; // so sync unroutes instead of waiting
+        try {
+            sync(route);
+        } finally {
+            closing = wasClosing;
+        }
+    }
+
+    /** The messenger closes: profiles still waiting for their next host are unrouted now. */
+    synchronized void close() {
+        closing = true;
+        for (ProfileRoute route : List.copyOf(routes.values())) {
+            if (route.hosts.isEmpty()) {
+                sync(route);
+            }
         }
     }
 

@@ -17,12 +17,12 @@ import java.util.concurrent.locks.LockSupport;
  * {@link io.etherware.core.kernel.OrderMarker} goes to the profile through the old host, behind
  * those messages (a lane's stream is FIFO at every hop, and the marker is the least critical
  * message of its lane, so every queue on the way puts it behind each earlier one), and travels on
- * as they do: forwarded, kept during a hold, moved with the component. The lane's later messages
- * wait here until the kernel hosting the component answers the marker, which it does when the
- * marker's turn comes at the component: everything this node sent it before has been handled.
- * They then go in the order they were sent. A lane this node has not used since the last change
- * is never held: nothing of it can be on the way. While no node announces the profile after its
- * host withdrew it ({@link #departed}), every message to it is held.
+ * as they do, forwarded by the old host. The lane's later messages wait here until the kernel
+ * that finds the component hosted answers the marker: everything this node sent it before is
+ * queued there, and that kernel keeps their order before anything sent later, through holds and
+ * moves. They then go in the order they were sent. A lane this node has not used since the last
+ * change is never held: nothing of it can be on the way. While no node announces the profile after
+ * its host withdrew it ({@link #departed}), every message to it is held.
  *
  * <p>A marker unanswered within {@link RouteFlushes#FLUSH_WAIT_NS} (the old host died or dropped
  * it) releases the lane anyway, logged: what the old host had is lost with it, and waiting longer
@@ -57,6 +57,8 @@ final class SenderOrder {
     private volatile boolean holding;
     /** The host that withdrew the profile while no other announced it; guarded by this. */
     private Peer departedFrom;
+    /** Departures so far, so that the end of a wait applies to its own departure only; guarded by this. */
+    private long departures;
     private final Lane[] lanes;
 
     SenderOrder(RouteTable.ProfileRoute route, RouteFlushes flushes) {
@@ -140,30 +142,32 @@ final class SenderOrder {
      * announcement, on another connection, may come a little later. Until it comes (see
      * {@link #ownerChanged}) or the route table gives up ({@link #abandon}), every message is
      * held; the lanes used through {@code from} will need a marker through it.
+     *
+     * @return this departure's number, for {@link #isDeparted(long)}
      */
-    void departed(Peer from) {
-        synchronized (this) {
-            holding = true;
-            route.owner = null;
-            departedFrom = from;
-            int mask = used.getAndSet(0);
-            for (int lane = 0; lane < lanes.length; lane++) {
-                if ((mask & (1 << lane)) != 0 && lanes[lane].via == null) {
-                    lanes[lane].via = from;
-                    lanes[lane].token = 0;
-                }
+    synchronized long departed(Peer from) {
+        holding = true;
+        route.owner = null;
+        departedFrom = from;
+        departures++;
+        int mask = used.getAndSet(0);
+        for (int lane = 0; lane < lanes.length; lane++) {
+            if ((mask & (1 << lane)) != 0 && lanes[lane].via == null) {
+                lanes[lane].via = from;
+                lanes[lane].token = 0;
             }
         }
-    }
-
-    /** Reports messages held for a profile no node announces any more as undeliverable to their senders. */
-    void reportLost(List<Message> held) {
-        flushes.deliverReleased(route, held); // the owner is null: each is reported
+        return departures;
     }
 
     /** Whether the profile departed and no node announced it since. */
     synchronized boolean isDeparted() {
         return departedFrom != null;
+    }
+
+    /** Whether the profile is still in the departure {@code departure} ({@link #departed} returned it). */
+    synchronized boolean isDeparted(long departure) {
+        return departedFrom != null && departures == departure;
     }
 
     /** No node announced the profile in time: ends every hold; returns the held messages, to report. */
@@ -188,22 +192,28 @@ final class SenderOrder {
         while (sending.get(old) > 0 && System.nanoTime() < deadline) {
             LockSupport.parkNanos(20_000);
         }
+        if (sending.get(old) > 0) {
+            flushes.drainTimedOut(route.profile);
+        }
+        List<Runnable> reports;
         synchronized (this) {
             if (departedFrom != null) {
                 return;
             }
+            var released = new ArrayList<Message>();
             for (int lane = 0; lane < lanes.length; lane++) {
                 Lane state = lanes[lane];
                 if (state.via != null && state.token == 0) {
                     state.token = flushes.sendMarker(this, lane, route.profile, state.via);
                     if (state.token == 0) {
-                        // The old host takes nothing now: nothing of this node can reach it.
-                        flushes.deliverReleased(route, open(state));
-                        holding = anyHeld();
+                        released.addAll(open(state)); // the old host is gone for good: nothing to wait for
                     }
                 }
             }
+            reports = flushes.deliverReleased(route, released);
+            holding = anyHeld();
         }
+        reports.forEach(Runnable::run);
     }
 
     /**
@@ -213,6 +223,7 @@ final class SenderOrder {
      * more).
      */
     boolean release(int lane, long token) {
+        List<Runnable> reports;
         synchronized (this) {
             Lane state = lanes[lane];
             if (state.token != token || state.via == null) {
@@ -223,9 +234,10 @@ final class SenderOrder {
                 return true;
             }
             // Under the monitor, and before the sends may skip it, so they go after these.
-            flushes.deliverReleased(route, open(state));
+            reports = flushes.deliverReleased(route, open(state));
             holding = anyHeld();
         }
+        reports.forEach(Runnable::run); // what could not be handed over, reported off the monitor
         return true;
     }
 
