@@ -25,7 +25,8 @@ import org.slf4j.LoggerFactory;
  * results from once it stopped.
  *
  * <p>The node's JVM runs with this JVM's collector and heap options ({@link #MEMORY_OPTIONS}), so
- * both nodes of a run collect garbage alike.
+ * both nodes of a run collect garbage alike, and with this JVM's {@code -Xlog} options that write
+ * to a file named per process ({@code %p}), so a test run has the safepoint log of every JVM.
  *
  * <p>Both JVMs run on one host and share its {@code CLOCK_MONOTONIC}, so times passed between them
  * (an origin, an event's time) need no translation. Used by one scenario thread; the process's
@@ -40,18 +41,22 @@ public final class NodeProcess implements AutoCloseable {
     private static final long STOP_TIMEOUT_S = 30;
     /** The prefixes of this JVM's options that the node's JVM gets too: collector and heap. */
     static final List<String> MEMORY_OPTIONS = List.of("-XX:+Use", "-XX:-Use", "-Xms", "-Xmx", "-Xmn",
-            "-XX:+AlwaysPreTouch", "-XX:MaxGCPauseMillis=", "-XX:SoftMaxHeapSize=");
+            "-XX:+AlwaysPreTouch", "-XX:MaxGCPauseMillis=", "-XX:SoftMaxHeapSize=", "-XX:MetaspaceSize=");
 
     private final Process process;
     private final Path log;
     private final List<String> afterReady = new ArrayList<>();
     private final CompletableFuture<Void> outputEnded = new CompletableFuture<>();
 
-    /** Those of {@code jvmOptions} that name the collector or size the heap. */
-    static List<String> memoryOptions(List<String> jvmOptions) {
+    /**
+     * Those of {@code jvmOptions} that name the collector or size the heap, and the {@code -Xlog}
+     * options whose file is named per process (others would have two JVMs write one file).
+     */
+    static List<String> nodeJvmOptions(List<String> jvmOptions) {
         var chosen = new ArrayList<String>();
         for (String option : jvmOptions) {
-            if (MEMORY_OPTIONS.stream().anyMatch(option::startsWith)) {
+            if (MEMORY_OPTIONS.stream().anyMatch(option::startsWith)
+                    || option.startsWith("-Xlog:") && option.contains("file=") && option.contains("%p")) {
                 chosen.add(option);
             }
         }
@@ -76,7 +81,7 @@ public final class NodeProcess implements AutoCloseable {
         String classPath = System.getProperty("surefire.test.class.path", System.getProperty("java.class.path"));
         List<String> command = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java")
                 .toString(), "--enable-native-access=ALL-UNNAMED"));
-        command.addAll(memoryOptions(java.lang.management.ManagementFactory.getRuntimeMXBean().getInputArguments()));
+        command.addAll(nodeJvmOptions(java.lang.management.ManagementFactory.getRuntimeMXBean().getInputArguments()));
         command.addAll(List.of("-cp", classPath, EtherwareDemo.class.getName()));
         command.addAll(arguments);
         Process process = new ProcessBuilder(command).redirectError(log.toFile()).start();

@@ -84,6 +84,30 @@ public final class UpgradeReport {
                 + " between them: %d", h.lastV1().cycle(), h.firstV2().cycle(), ms(h.handOverNs()),
                 ms(run.periodNs()), h.lostCycles())),
                 () -> lines.add("  control loop: no torque command from V2 was recorded"));
+        handOver(run).ifPresent(h -> lines.addAll(betweenLines(run, h)));
+        return lines;
+    }
+
+    /**
+     * One line for each cycle the hand-over lost: what the controller recorded of it (a reading
+     * that failed, and which version waited for it), or that it recorded nothing (the Tick was
+     * never released, or a later Tick abandoned it while its reading was out).
+     */
+    static List<String> betweenLines(ScenarioRun run, HandOver handOver) {
+        List<String> lines = new ArrayList<>();
+        for (long cycle = handOver.lastV1().cycle() + 1; cycle < handOver.firstV2().cycle(); cycle++) {
+            long number = cycle;
+            List<ControlCycle> records = run.cycles().stream().filter(c -> c.cycle() == number).toList();
+            if (records.isEmpty()) {
+                lines.add(String.format(Locale.ROOT, "    cycle %d: no record (not released, or abandoned by the"
+                        + " next Tick)", cycle));
+            }
+            for (ControlCycle c : records) {
+                lines.add(String.format(Locale.ROOT, "    cycle %d: %s by V%d, released at %.4f s, started %s"
+                        + " late, reading ended %s after the release", cycle, c.outcome(), c.gainVersion(),
+                        run.secondsOf(c.releaseNs()), ms(c.startLatenessNs()), ms(c.responseNs())));
+            }
+        }
         return lines;
     }
 

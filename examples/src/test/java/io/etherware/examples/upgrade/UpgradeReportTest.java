@@ -33,6 +33,18 @@ class UpgradeReportTest {
     }
 
     @Test
+    void shouldAccountForEveryCycleTheHandOverLost() {
+        ScenarioRun run = Runs.run("upgrade", Runs.samples(0.0),
+                List.of(cycle(0, 1), cycle(1, 1), Runs.missed(2), cycle(4, 2)), List.of(), 6 * P);
+
+        List<String> lines = UpgradeReport.betweenLines(run, UpgradeReport.handOver(run).orElseThrow());
+
+        assertEquals(2, lines.size(), () -> String.join("\n", lines));
+        assertTrue(lines.get(0).startsWith("    cycle 2: MISSED by V"), lines.get(0));
+        assertTrue(lines.get(1).startsWith("    cycle 3: no record"), lines.get(1));
+    }
+
+    @Test
     void shouldHaveNoHandOverWhenV2NeverCommanded() {
         ScenarioRun run = Runs.run("upgrade", Runs.samples(0.0), List.of(cycle(0, 1)), List.of(), 2 * P);
         assertTrue(UpgradeReport.handOver(run).isEmpty());

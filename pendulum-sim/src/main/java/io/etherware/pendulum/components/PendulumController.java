@@ -278,8 +278,12 @@ public final class PendulumController implements Component {
         lastTickSequence = previous.lastTickSequence();
         pendingCycle = previous.pendingCycle();
         lastTorqueNm = previous.lastTorqueNm();
-        if (!memory.gains().equals(gains)) {
-            LOG.info("controller continues after {} cycles with gains {} (v{}) instead of {} (v{})",
+        // Debug, and only then compared: this runs inside the swap's pause, where on two loaded
+        // cores a node's first log line at info cost about 5 ms (the appender's first use loads and
+        // runs its classes) and a record's first equals 2-4 ms (its bootstrap); the management
+        // service reports the upgrade once the new logic has begun.
+        if (LOG.isDebugEnabled() && !memory.gains().equals(gains)) {
+            LOG.debug("controller continues after {} cycles with gains {} (v{}) instead of {} (v{})",
                     memory.cycles(), gains.name(), gains.version(), memory.gains().name(),
                     memory.gains().version());
         }
