@@ -123,6 +123,7 @@ public final class MigrateScenario {
             rig.node().add(CycleReport.RECORDER, CycleReport.recorder(rig.node(), remote));
             rig.node().add(Requester.PROFILE, Requester::new);
             rig.node().start();
+            WarmUp.deliveries(rig.node());
             try (NetworkMessenger net = NetworkMessenger.start(rig.node(), NetworkConfig.builder()
                     .codec(WarmUp.warmedCodec(rig.node())).listen(new InetSocketAddress("127.0.0.1", 0))
                     .build())) {

@@ -168,6 +168,7 @@ public final class UpgradeScenario {
             // registers their contents.
             Management.registerContents(rig.node().contentsTypes());
             rig.node().start();
+            WarmUp.deliveries(rig.node());
             try (NetworkMessenger net = NetworkMessenger.start(rig.node(), NetworkConfig.builder()
                     .codec(WarmUp.warmedCodec(rig.node())).listen(new InetSocketAddress("127.0.0.1", 0))
                     .build())) {

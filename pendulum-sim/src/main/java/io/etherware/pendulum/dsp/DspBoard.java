@@ -138,6 +138,13 @@ public final class DspBoard implements AutoCloseable {
     public synchronized void startRealTime(NodeClock clock, ThreadFactory threadFactory, DeadlineSleeper sleeper) {
         Objects.requireNonNull(clock, "clock");
         Objects.requireNonNull(sleeper, "sleeper");
+        // Logged here, on the caller's thread, not first thing on the stepping one: a JVM's first
+        // log line loads the appender's classes, and this thread doing so at the moment the
+        // network's real-time reader loaded classes too, both spun inside the JVM at full CPU on
+        // both cores for 950 ms (until the kernel's real-time throttling let ordinary threads
+        // run): the board fell 950 ms behind and the pendulum fell.
+        LOG.info("DSP board running in real time: step {} µs, watchdog {} ms, link {}",
+                config.stepNs() / 1_000, config.watchdogTimeoutNs() / 1_000_000, link.name());
         markStarted(clock.nanoTime());
         running = true;
         thread = threadFactory.newThread(() -> runRealTime(clock, sleeper));
@@ -167,8 +174,6 @@ public final class DspBoard implements AutoCloseable {
     }
 
     private void runRealTime(NodeClock clock, DeadlineSleeper sleeper) {
-        LOG.info("DSP board running in real time: step {} µs, watchdog {} ms, link {}",
-                config.stepNs() / 1_000, config.watchdogTimeoutNs() / 1_000_000, link.name());
         while (running) {
             advanceTo(clock.nanoTime());
             long nextNs = nextCycleNs();
