@@ -42,12 +42,12 @@ public final class WarmUp {
     /** A profile only the warm-up uses: the spare controller that the scenario migrates once first. */
     public static final Profile REHEARSAL = Profile.of("controller", "pendulum", "rehearsal");
 
-    private WarmUp() {
-    }
-
-    /** Request rounds per criticality through the kernel: enough for the JIT's first tier. */
+    /** Request rounds per criticality through the kernel: the first loads its classes, the rest start its JIT. */
     private static final int DELIVERY_ROUNDS = 200;
     private static final long DELIVERY_TIMEOUT_NS = 10_000_000_000L;
+
+    private WarmUp() {
+    }
 
     /**
      * Runs requests and their replies through the node's kernel, at every criticality, one at a

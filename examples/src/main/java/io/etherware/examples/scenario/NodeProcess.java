@@ -39,7 +39,7 @@ public final class NodeProcess implements AutoCloseable {
 
     private static final Logger LOG = LoggerFactory.getLogger(NodeProcess.class);
     private static final long STOP_TIMEOUT_S = 30;
-    /** The prefixes of this JVM's options that the node's JVM gets too: collector and heap. */
+    /** The prefixes of this JVM's options that the node's JVM gets too: collector, heap, metaspace. */
     static final List<String> MEMORY_OPTIONS = List.of("-XX:+Use", "-XX:-Use", "-Xms", "-Xmx", "-Xmn",
             "-XX:+AlwaysPreTouch", "-XX:MaxGCPauseMillis=", "-XX:SoftMaxHeapSize=", "-XX:MetaspaceSize=");
 
@@ -49,7 +49,7 @@ public final class NodeProcess implements AutoCloseable {
     private final CompletableFuture<Void> outputEnded = new CompletableFuture<>();
 
     /**
-     * Those of {@code jvmOptions} that name the collector or size the heap, and the {@code -Xlog}
+     * Those of {@code jvmOptions} that name the collector or size the heap or metaspace, and the {@code -Xlog}
      * options whose file is named per process (others would have two JVMs write one file).
      */
     static List<String> nodeJvmOptions(List<String> jvmOptions) {

@@ -143,6 +143,9 @@ public final class DspBoard implements AutoCloseable {
         // network's real-time reader loaded classes too, both spun inside the JVM at full CPU on
         // both cores for 950 ms (until the kernel's real-time throttling let ordinary threads
         // run): the board fell 950 ms behind and the pendulum fell.
+        if (started) {
+            throw new IllegalStateException("the board is already running");
+        }
         LOG.info("DSP board running in real time: step {} µs, watchdog {} ms, link {}",
                 config.stepNs() / 1_000, config.watchdogTimeoutNs() / 1_000_000, link.name());
         markStarted(clock.nanoTime());
