@@ -80,6 +80,12 @@ final class SeqStream implements AutoCloseable {
         Await.until(goal + " messages sent", () -> sent >= goal);
     }
 
+    /** Waits until every message sent so far was handled and reported (bounded by the tests' deadline). */
+    void awaitCaughtUp() {
+        long goal = sent;
+        Await.until("the " + goal + " messages sent so far reported", () -> reports.size() >= goal);
+    }
+
     /** Stops sending; returns how many were sent. */
     long stop() throws InterruptedException {
         running = false;
