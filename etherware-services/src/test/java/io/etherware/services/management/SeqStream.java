@@ -8,12 +8,16 @@ import example.counter.Seq;
 import io.etherware.core.kernel.EtherwareNode;
 import io.etherware.core.message.Criticality;
 import io.etherware.core.message.Message;
+import io.etherware.core.message.MessageId;
 import io.etherware.core.message.Profile;
 import io.etherware.core.message.QoS;
 import io.etherware.testkit.Await;
 import java.util.ArrayList;
+import java.util.BitSet;
 import java.util.Comparator;
 import java.util.List;
+import java.util.Map;
+import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.locks.LockSupport;
@@ -29,7 +33,7 @@ final class SeqStream implements AutoCloseable {
 
     final List<Message> reports = new CopyOnWriteArrayList<>();
     /** The id each sequence number was sent under, for a failure to name. */
-    private final java.util.Map<Long, io.etherware.core.message.MessageId> ids = new java.util.concurrent.ConcurrentHashMap<>();
+    private final Map<Long, MessageId> ids = new ConcurrentHashMap<>();
     private final EtherwareNode node;
     private final Profile target;
     private final long periodNs;
@@ -86,6 +90,15 @@ final class SeqStream implements AutoCloseable {
         Await.until("the " + goal + " messages sent so far reported", () -> reports.size() >= goal);
     }
 
+    /** Stops, waits for a report of every message sent, and checks that there is one each. */
+    private List<Counted> stopAndAwaitEveryReport() throws InterruptedException {
+        long total = stop();
+        Await.until(total + " reports (have " + reports.size() + ")", () -> reports.size() >= total);
+        List<Counted> handled = handled();
+        assertEquals(total, handled.size(), "each message handled exactly once");
+        return handled;
+    }
+
     /** Stops sending; returns how many were sent. */
     long stop() throws InterruptedException {
         running = false;
@@ -119,10 +132,7 @@ final class SeqStream implements AutoCloseable {
 
     /** Stops, waits for every report, and checks: each message handled once, in order, the count continuing. */
     void stopAndAssertExactlyOnceInOrder() throws InterruptedException {
-        long total = stop();
-        Await.until(total + " reports (have " + reports.size() + ")", () -> reports.size() >= total);
-        List<Counted> handled = handled();
-        assertEquals(total, handled.size(), "each message handled exactly once");
+        List<Counted> handled = stopAndAwaitEveryReport();
         for (int i = 0; i < handled.size(); i++) {
             Counted counted = handled.get(i);
             if (counted.count() != i + 1 || counted.sequence() != i) {
@@ -140,11 +150,9 @@ final class SeqStream implements AutoCloseable {
      * @return how many were handled after a later one
      */
     int stopAndAssertExactlyOnceAtMostLate(int maxLate) throws InterruptedException {
-        long total = stop();
-        Await.until(total + " reports (have " + reports.size() + ")", () -> reports.size() >= total);
-        List<Counted> handled = handled();
-        assertEquals(total, handled.size(), "each message handled exactly once");
-        var seen = new java.util.BitSet();
+        List<Counted> handled = stopAndAwaitEveryReport();
+        long total = handled.size();
+        var seen = new BitSet();
         long highest = -1;
         var late = new ArrayList<String>();
         for (int i = 0; i < handled.size(); i++) {
@@ -179,8 +187,8 @@ final class SeqStream implements AutoCloseable {
                 text.append(" as count ").append(counted.count()).append(" at ").append(report.messageId().nodeId());
             }
         }
-        return (text.isEmpty() ? "never" : text.toString().strip()) + " (sent as " + ids.get(sequence) + ", the next as "
-                + ids.get(sequence + 1) + ")";
+        return (text.isEmpty() ? "never" : text.toString().strip()) + " (sent as " + ids.get(sequence)
+                + ", the next as " + ids.get(sequence + 1) + ")";
     }
 
     private String around(int index) {

@@ -64,7 +64,7 @@ final class RouteTable {
     private long refusalsLogged;
     /** Whether the hosts being removed are gone for good (no wait for another to announce). */
     private boolean forgetting;
-    /** Whether the messenger closes (or a wait ends): a profile no node announces is unrouted at once. */
+    /** Whether the messenger closes: a profile no node announces is unrouted at once. */
     private boolean closing;
 
     /**
@@ -220,10 +220,15 @@ final class RouteTable {
     }
 
     private void sync(ProfileRoute route) {
+        sync(route, false);
+    }
+
+    /** @param unrouteNow a profile no node announces is unrouted at once, not held for its next host */
+    private void sync(ProfileRoute route, boolean unrouteNow) {
         route.hostIds = Set.copyOf(route.hosts.keySet());
         if (route.hosts.isEmpty()) {
             Peer last = route.owner;
-            boolean stillOurs = !forgetting && !closing && route.registered && isRegistered(route);
+            boolean stillOurs = !unrouteNow && !forgetting && !closing && route.registered && isRegistered(route);
             if (stillOurs && route.order.isDeparted()) {
                 return; // waiting for the next host already (expireDeparted ends the wait)
             }
@@ -302,18 +307,7 @@ final class RouteTable {
         if (routes.get(route.profile) == route && route.hosts.isEmpty() && route.order.isDeparted(departure)) {
             log.info("profile '{}' was withdrawn and no node announced it within {} ms: unrouted", route.profile,
                     TimeUnit.NANOSECONDS.toMillis(RouteFlushes.FLUSH_WAIT_NS));
-            unrouteDeparted(route);
-        }
-    }
-
-    /** Ends a departed profile's wait: unregisters it; what was held is sent again or reported. */
-    private void unrouteDeparted(ProfileRoute route) {
-        boolean wasClosing = closing;
-        closing = true; // so sync unroutes instead of waiting
-        try {
-            sync(route);
-        } finally {
-            closing = wasClosing;
+            sync(route, true); // unregisters it; what was held is sent again or reported
         }
     }
 
