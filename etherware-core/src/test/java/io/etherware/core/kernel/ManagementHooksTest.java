@@ -342,6 +342,60 @@ class ManagementHooksTest {
     }
 
     @Test
+    void shouldForwardTheMessagesSentDirectlyBehindTheForwardedOnesWhenAnArrivalMovesOnBeforeItsAdmission()
+            throws Exception {
+        var forwarded = new CopyOnWriteArrayList<Long>();
+        var handled = new CopyOnWriteArrayList<Long>();
+        Profile arrival = Profile.of("etherware.arrival", "id", "onward");
+        try (var node = EtherwareNode.builder().nodeId("arrive-relocate").build()) {
+            node.add(MARKER, () -> (message, context) -> context.reply(message, message.contents()));
+            node.start();
+            node.addHeld(TARGET, arrival, () -> (message, context) -> handled.add(message.contentsAs(Num.class).value()),
+                    ns -> { });
+            node.send(TARGET, new Num(9)); // sent here directly: deferred until the admission
+            node.send(arrival, new Num(0));
+            node.send(arrival, new Num(1));
+            node.requestBlocking(MARKER, new Text("m")); // the FIFO queue has passed them
+            node.relocateAsync(TARGET, message -> forwarded.add(message.contentsAs(Num.class).value()))
+                    .get(30, TimeUnit.SECONDS);
+            node.send(TARGET, new Num(10)); // straight through the route now
+            assertEquals(List.of(0L, 1L, 9L, 10L), forwarded, "forwarded first, then the deferred one, each once");
+            assertEquals(List.of(), handled, "never admitted here");
+            assertEquals(0, node.stats().undeliverable());
+        }
+    }
+
+    @Test
+    void shouldResolveTheMessagesSentDirectlyAnewWhenAnArrivalIsRemovedBeforeItsAdmission() {
+        var handled = new CopyOnWriteArrayList<Long>();
+        Profile arrival = Profile.of("etherware.arrival", "id", "gone");
+        try (var node = EtherwareNode.builder().nodeId("arrive-remove").build()) {
+            node.start();
+            node.addHeld(TARGET, arrival, () -> (message, context) -> handled.add(message.contentsAs(Num.class).value()),
+                    ns -> { });
+            node.send(TARGET, new Num(9)); // deferred
+            node.send(arrival, new Num(0)); // kept at the gate
+            node.remove(TARGET);
+            // Nothing hosts either profile now: both are undeliverable, counted; none vanishes.
+            Await.until("two undeliverable", () -> node.stats().undeliverable() == 2);
+            assertEquals(List.of(), handled);
+        }
+    }
+
+    @Test
+    void shouldCountTheMessagesSentDirectlyAsDiscardedWhenTheNodeClosesBeforeAnAdmission() {
+        Profile arrival = Profile.of("etherware.arrival", "id", "closed");
+        var node = EtherwareNode.builder().nodeId("arrive-close").build();
+        node.start();
+        node.addHeld(TARGET, arrival, () -> (message, context) -> { }, ns -> { });
+        node.send(TARGET, new Num(9)); // deferred
+        node.send(TARGET, new Num(10));
+        node.close();
+        assertEquals(2, node.stats().discarded(), "deferred at close: counted, not lost silently");
+        assertEquals(0, node.stats().handled());
+    }
+
+    @Test
     void shouldForwardTheMessagesStillQueuedForARelocatedComponentBeforeSwitchingItsProfile() throws Exception {
         var forwarded = new CopyOnWriteArrayList<Long>();
         RemoteRoute route = message -> forwarded.add(message.contentsAs(Num.class).value());

@@ -10,17 +10,16 @@ import io.etherware.core.message.QoS;
 import io.etherware.testkit.Await;
 import java.util.List;
 import java.util.concurrent.CopyOnWriteArrayList;
-import org.junit.jupiter.api.Disabled;
 import org.junit.jupiter.api.Test;
 
 /**
  * The arrival pen of a migration (the management package's ordering argument) under the
  * real-time scheduler: a message sent directly to an arriving component must be handled after
- * the ones forwarded by the source, which were sent before it. The kernel pens it by adding
- * {@code PEN_OFFSET} to its job's sequence, but this scheduler orders by its key (for an
- * aperiodic message the submission time) before the sequence, so the direct message, submitted
- * first, runs first. It fails today (handled [9, 0, 1]); the core's test of the same order passes
- * under the default scheduler, whose urgency is the sequence alone.
+ * the ones forwarded by the source, which were sent before it. This scheduler orders by a key
+ * taken at the submission (for an aperiodic message the submission time) before the sequence, so
+ * an offset on the sequence alone would let the direct message, submitted first, run first
+ * (handled [9, 0, 1]); the kernel therefore defers its submission until the admission. The
+ * core's test of the same order runs under the default scheduler, whose urgency is the sequence.
  */
 class ArrivalPenOrderTest {
 
@@ -28,8 +27,6 @@ class ArrivalPenOrderTest {
     }
 
     @Test
-    @Disabled("known defect, issue 16 item 2: the pen orders by sequence, the real-time scheduler by key first;"
-            + " fails with [9, 0, 1]")
     void shouldHandleForwardedMessagesBeforeThoseSentDirectlyUnderTheRealtimeScheduler() throws Exception {
         Profile target = Profile.of("counter", "test", "pen");
         Profile arrival = Profile.of("etherware.arrival", "id", "pen-1");
@@ -46,7 +43,9 @@ class ArrivalPenOrderTest {
             node.send(arrival, new Num(1), middle);
             node.admit(arrival, 2);
             Await.until("three handled", () -> handled.size() == 3);
-            assertEquals(List.of(0L, 1L, 9L), handled, "forwarded first, then penned");
+            node.send(target, new Num(10), middle); // after the admission: in the order sent
+            Await.until("four handled", () -> handled.size() == 4);
+            assertEquals(List.of(0L, 1L, 9L, 10L), handled, "forwarded first, then penned, then later ones");
         }
     }
 }

@@ -125,13 +125,14 @@
  * whose later message goes straight to the target has had every earlier one of the same urgency
  * forwarded first, into the same FIFO stream (the network lane of that urgency). At the target,
  * messages sent directly to the profile after the install are
- * <em>penned</em>: they sort behind the forwarded ones of the same urgency, which were sent earlier
- * (senders at the target reached the component through the source until the install).
- * <b>Known defect:</b> the pen is an offset on the job's sequence, so it holds under a scheduler
- * whose urgency is the sequence (the default one); the real-time scheduler orders by its deadline
- * key first (the submission time of an aperiodic message), so there a message sent directly runs
- * before forwarded ones submitted after it ({@code ArrivalPenOrderTest} in etherware-rt,
- * disabled until fixed). The
+ * <em>penned</em>: they go behind the forwarded ones of the same urgency, which were sent earlier
+ * (senders at the target reached the component through the source until the install). Until the
+ * admission a penned message is not even submitted to the scheduler: the kernel keeps it and
+ * submits it at the admission, after every forwarded one, so it follows them under any
+ * scheduler, the real-time one included, whose deadline key is taken at the submission
+ * ({@code ArrivalPenOrderTest} in etherware-rt); after the admission, while penned messages are
+ * still queued, later ones are penned by their sequence as well. If the component is removed or
+ * moves on before its admission, the deferred messages follow its kept ones. The
  * target answers the INSTALL at the lowest criticality, and the network sends a NONE message after
  * every message queued for the same node before it, on every lane (NETWORK-PROTOCOL.md, "Priority
  * on the wire"), so the answer arrives after every message its senders sent to the component

@@ -45,8 +45,9 @@ final class Delivery {
     /** Logs as the kernel: these are the kernel's messages. */
     private static final Logger log = LoggerFactory.getLogger(Kernel.class);
     /**
-     * Added to the sequence of a penned job (see {@link LocalShell#pens}): it then sorts after the
-     * jobs of the same urgency not penned. Far above any sequence a node reaches.
+     * Added to the sequence of a penned job (see {@link ArrivalPen}): under a scheduler whose
+     * urgency is the sequence, it then sorts after the jobs of the same urgency not penned. Far
+     * above any sequence a node reaches.
      */
     static final long PEN_OFFSET = 1L << 62;
     private static final int MAX_ROUTE_REFUSALS_LOGGED = 64;
@@ -121,18 +122,27 @@ final class Delivery {
         }
         countInbound(message, +1);
         long sequence = jobSequence.getAndIncrement();
-        if (shell.pens(message)) {
+        boolean penned = shell.pens(message);
+        if (penned) {
             sequence += PEN_OFFSET;
         }
         Job job = Job.pooled(message, shell.name(), shell, sequence, releaseNs);
-        if (!scheduler.submit(job)) {
-            shell.leaveQueue();
-            countInbound(message, -1);
-            discard(job);
-        }
         ArrivalPen pen = shell.pen();
+        if (penned && pen.defer(job)) {
+            return; // submitted at the admission, after every forwarded job
+        }
+        submit(job, shell);
         if (pen != null && pen.isArrival(message)) {
             pen.arrived(); // after the submission: the admission's hand-over queues behind it
+        }
+    }
+
+    /** Submits a counted job of {@code shell}; if the scheduler refuses it, it is discarded. */
+    void submit(Job job, LocalShell shell) {
+        if (!scheduler.submit(job)) {
+            shell.leaveQueue();
+            countInbound(job.message(), -1);
+            discard(job);
         }
     }
 

@@ -252,7 +252,7 @@ public final class LocalShell implements Shell {
      * message the source sent there is in, run {@code onAllArrived}.
      */
     void arriveHeld(Profile arrivalProfile, LongConsumer probe, Runnable onAllArrived) {
-        pen = new ArrivalPen(arrivalProfile, gate::release, onAllArrived);
+        pen = new ArrivalPen(arrivalProfile, gate::release, onAllArrived, job -> delivery.submit(job, this));
         gate.hold();
         logic.expectFirstHandling(probe);
     }
@@ -273,9 +273,22 @@ public final class LocalShell implements Shell {
         gate.release();
     }
 
-    /** See {@link ComponentGate#close()}. */
+    /** See {@link ComponentGate#close()}; with the jobs an arrival still deferred. */
     List<Job> closeGate() {
-        return gate.close();
+        List<Job> left = gate.close();
+        ArrivalPen arrived = pen;
+        if (arrived != null) {
+            left.addAll(arrived.drain());
+        }
+        return left;
+    }
+
+    /** Leaving before an admission: the deferred jobs follow the kept ones (see {@link ArrivalPen#flush}). */
+    private void endDeferral() {
+        ArrivalPen arrived = pen;
+        if (arrived != null) {
+            arrived.flush();
+        }
     }
 
     // ---------------------------------------------------------------- lifecycle
@@ -296,6 +309,7 @@ public final class LocalShell implements Shell {
         }
         removed = true;
         logic.markStopped();
+        endDeferral();
         gate.leave();
         return true;
     }
@@ -308,6 +322,7 @@ public final class LocalShell implements Shell {
     void remove() {
         removed = true;
         logic.stopRunning();
+        endDeferral(); // they park behind the kept ones and are resolved anew in turn
         gate.endHoldOnLeave();
     }
 
@@ -338,6 +353,7 @@ public final class LocalShell implements Shell {
                 ((PendingRequest) kept.target()).settle();
             }
         });
+        endDeferral(); // counted already: forwarded when taken, after those queued before them
         if ((int) QUEUED.getVolatile(this) == 0) {
             trySwitch();
         }
