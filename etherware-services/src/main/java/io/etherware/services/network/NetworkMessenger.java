@@ -144,6 +144,28 @@ public final class NetworkMessenger implements AutoCloseable {
     }
 
     /**
+     * Whether node {@code nodeId} left without a goodbye: its last connection ended by end of
+     * stream or a socket error with no BYE before it, at least {@code forAtLeast} ago, and it has
+     * not connected again since. That is how the end of its process looks (its system closes its
+     * sockets), or a reset by its host; a node that closes its messenger says BYE first, and a
+     * partition ends connections by heartbeat timeout, so neither counts. A live node whose
+     * connection was reset redials (or is redialed) at once, so a {@code forAtLeast} of a few
+     * redial delays tells the two apart, except in a partition that begins with a reset. False for
+     * a node not known here, or forgotten after {@link NetworkConfig#peerDownGraceNs()}.
+     *
+     * @param nodeId     the other node's id
+     * @param forAtLeast how long it must have been gone, not negative
+     * @return whether it left so, that long ago
+     */
+    public boolean leftWithoutGoodbye(String nodeId, Duration forAtLeast) {
+        Objects.requireNonNull(nodeId, "nodeId");
+        if (forAtLeast.isNegative()) {
+            throw new IllegalArgumentException("forAtLeast=" + forAtLeast + " must not be negative");
+        }
+        return engine.leftWithoutGoodbye(nodeId, forAtLeast.toNanos());
+    }
+
+    /**
      * The peers known to this node, connected or not.
      *
      * @return a snapshot of each, sorted by node id

@@ -47,6 +47,8 @@ final class Connection implements Runnable {
     private volatile Thread writerThread;
     private volatile boolean closing;
     private volatile boolean activated;
+    /** The peer's BYE was read: it closed on purpose, its process did not just end. */
+    private volatile boolean goodbyeRead;
     /** Guarded by this: {@link #close} runs once. */
     private boolean closed;
 
@@ -304,6 +306,20 @@ final class Connection implements Runnable {
     /** Whether the connection is closing: its threads stop at the next frame or wait. */
     boolean isClosing() {
         return closing;
+    }
+
+    /** The reader read the peer's BYE. */
+    void goodbyeRead() {
+        goodbyeRead = true;
+    }
+
+    /**
+     * Whether the peer ended this connection without a goodbye: end of stream or a socket error
+     * without its BYE before, as when its process exits (its system closes the socket) or its host
+     * resets the connection. A heartbeat timeout (a silent peer, or a partition) is not one.
+     */
+    boolean endedWithoutGoodbye(CloseReason reason) {
+        return reason == CloseReason.PEER_CLOSED && !goodbyeRead || reason == CloseReason.IO_ERROR;
     }
 
     /**

@@ -91,6 +91,7 @@ final class ConnectionInput {
                         }
                     }
                     case Frame.Bye goodbye -> {
+                        connection.goodbyeRead();
                         if (CloseReason.ofCode(goodbye.code()) == CloseReason.SHUTDOWN && link.active() == connection) {
                             events.peerShutDown(peer);
                         }

@@ -310,6 +310,9 @@ public final class Engine {
         @Override
         public void connectionClosed(Connection connection, CloseReason reason, String detail, boolean wasActive) {
             counters.closed(reason);
+            if (wasActive) {
+                connection.peer().connectionEnded(NetworkContext.nowNs(), connection.endedWithoutGoodbye(reason));
+            }
             if (reason.isBadInput()) {
                 log.warn("node {}: closed {} for bad input: {}: {}", nodeId, connection, reason, detail);
             } else if (reason == CloseReason.SHUTDOWN || !wasActive) {
@@ -427,6 +430,12 @@ public final class Engine {
         }
         all.sort(Comparator.comparing(PeerStatus::nodeId));
         return all;
+    }
+
+    /** See {@link io.etherware.services.network.NetworkMessenger#leftWithoutGoodbye}. */
+    public boolean leftWithoutGoodbye(String peerId, long forNs) {
+        Peer peer = peers.get(peerId);
+        return peer != null && peer.leftWithoutGoodbye(NetworkContext.nowNs(), forNs);
     }
 
     public Optional<PeerStatus> peerStatus(String peerId) {

@@ -24,6 +24,11 @@ final class Peer {
     private long incarnation;
     private long announceVersion = -1;
     private boolean retired;
+    /**
+     * Since when the node has had no connection, its last one having ended without a goodbye
+     * ({@link Connection#endedWithoutGoodbye}); -1 while it has one, or if it said goodbye.
+     */
+    private volatile long silentSinceNs = -1;
 
     Peer(String nodeId, NetworkContext context) {
         this.nodeId = nodeId;
@@ -74,6 +79,28 @@ final class Peer {
         return true;
     }
 
+    /** An active connection of this node closed at {@code nowNs}; {@code withoutGoodbye}: see {@link #silentSinceNs}. */
+    void connectionEnded(long nowNs, boolean withoutGoodbye) {
+        silentSinceNs = withoutGoodbye ? nowNs : -1;
+    }
+
+    /**
+     * Whether the node's last connection ended without a goodbye at least {@code forNs} before
+     * {@code nowNs} and no lane has connected since: its process most likely exited.
+     */
+    boolean leftWithoutGoodbye(long nowNs, long forNs) {
+        long since = silentSinceNs;
+        if (since < 0 || nowNs - since < forNs) {
+            return false;
+        }
+        for (Link link : links) {
+            if (link.isConnected()) {
+                return false;
+            }
+        }
+        return silentSinceNs == since;
+    }
+
     /** The connection of lane 0, the one that carries the time exchange, or null. */
     Connection primary() {
         return links[0].active();
@@ -91,6 +118,7 @@ final class Peer {
         LaneActivation activation = links[candidate.lane()].activate(candidate, theirs, announceBody);
         boolean restarted = false;
         if (activation.accepted()) {
+            silentSinceNs = -1;
             restarted = incarnation != 0 && incarnation != hello.incarnation();
             if (incarnation != hello.incarnation()) {
                 incarnation = hello.incarnation();
