@@ -32,10 +32,12 @@ import java.util.Set;
  *       first message, to report the swap gap; after that it is answered with {@code gapNs = -1};</li>
  *   <li>{@code migrationStepTimeout} 2 s: how long the source of a migration waits for each answer
  *       of the target (prepare, install, hand-over); a step without an answer fails the migration
- *       and the component resumes at the source;</li>
+ *       and the component resumes at the source. Also how long a target waits, after the source of
+ *       a component installed there left without a goodbye, before it takes the component over;</li>
  *   <li>{@code handoverWait} 5 s: how long a target keeps a migrated component held, waiting for the
  *       source's hand-over, before it gives the migration up and removes the component (the source
- *       has then resumed it after its own step timeout, or died); an instance prepared for a
+ *       has then resumed it after its own step timeout; one that left without a goodbye has had the
+ *       component taken over before); an instance prepared for a
  *       migration whose state never came is discarded after {@code settleWait + 2 ×
  *       migrationStepTimeout + handoverWait} (9.1 s by default);</li>
  *   <li>{@code maxQueuedOperations} 8: how many upgrades and migrations away from this node may

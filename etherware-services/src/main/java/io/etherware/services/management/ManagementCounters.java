@@ -13,6 +13,7 @@ final class ManagementCounters {
     final LongAdder migrated = new LongAdder();
     final LongAdder migratedIn = new LongAdder();
     final LongAdder abandonedIn = new LongAdder();
+    final LongAdder takenOverIn = new LongAdder();
     final LongAdder failed = new LongAdder();
     final LongAdder refused = new LongAdder();
     final LongAdder busy = new LongAdder();

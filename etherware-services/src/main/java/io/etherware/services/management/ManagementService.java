@@ -183,7 +183,8 @@ public final class ManagementService implements Component {
         // which may be waiting for the other node's answers.
         this.migrations = new Migrations(running, worker, steps, new MigrationSource(kernel, config, network, access),
                 new MigrationTarget(kernel, config, loader, steps.continuations(), jarLoaders::installed,
-                        counters.abandonedIn));
+                        counters.abandonedIn, counters.takenOverIn, network == null ? node -> false
+                                : node -> network.leftWithoutGoodbye(node, MigrationTarget.sourceGoneAfter(config))));
     }
 
     @Override
@@ -260,6 +261,18 @@ public final class ManagementService implements Component {
      */
     public long abandonedInCount() {
         return counters.abandonedIn.sum();
+    }
+
+    /**
+     * Migrations into this node completed here without their hand-over, because their source left
+     * without a goodbye after sending the INSTALL (its process ended: see
+     * {@link NetworkMessenger#leftWithoutGoodbye}) and did not come back within a migration step's
+     * time: the component runs here with the state it handed over. Any thread.
+     *
+     * @return the count so far (the instances that restarts make after {@link #install} share it)
+     */
+    public long takenOverInCount() {
+        return counters.takenOverIn.sum();
     }
 
     /**

@@ -103,19 +103,34 @@
  *   <tr><td>target</td><td>hand-over, or after it</td>
  *       <td>the component is gone: its state and the messages forwarded to it lived only
  *       there</td></tr>
- *   <tr><td>source</td><td>any step</td>
+ *   <tr><td>source</td><td>prepare, quiesce, its snapshot (before the INSTALL left)</td>
  *       <td>the component is gone with its node, as without a migration. The target keeps
  *       nothing: an instance prepared for it is discarded after {@code settleWait + 2 ×
- *       migrationStepTimeout + handoverWait}, a copy installed there is held, never handed over,
- *       and removed after the hand-over wait; either is counted
- *       ({@link io.etherware.services.management.ManagementService#abandonedInCount()}) and no
- *       arrival profile stays (tested with the source's JVM killed in PREPARE, in its snapshot and
- *       in INSTALL)</td></tr>
+ *       migrationStepTimeout + handoverWait}, counted
+ *       ({@link io.etherware.services.management.ManagementService#abandonedInCount()}) (tested
+ *       with the source's JVM killed in PREPARE and in its snapshot)</td></tr>
+ *   <tr><td>source</td><td>transfer, relocation, hand-over (after the INSTALL left)</td>
+ *       <td>the target runs the component, from the state handed over and every message forwarded
+ *       to it: once the source has left without a goodbye (its connections ended by end of stream
+ *       or reset, with no BYE: how a process that ends looks, see
+ *       {@link io.etherware.services.network.NetworkMessenger#leftWithoutGoodbye}) and stayed away
+ *       for {@code migrationStepTimeout}, it admits its held copy, counted
+ *       ({@link io.etherware.services.management.ManagementService#takenOverInCount()}). The
+ *       messages the source still held die with it, as they would without a migration (tested
+ *       with the source's JVM killed while the target restores, and right after the install)</td></tr>
  * </table>
- * The last two are known limits. The target cannot tell a dead source from one it cannot reach,
- * which resumes the component itself after its step timeout, so releasing its copy on silence
- * could run two instances; closing them needs the source to keep the snapshot and what it forwarded
- * until the hand-over is confirmed, and a way to prove a node dead (its next incarnation).
+ * Why the take-over runs one instance: from the INSTALL on, the source resumes the component only
+ * if its step fails, and a source that died resumes nothing. A source that is alive but cannot be
+ * reached (a partition: its connections end by heartbeat timeout) is not taken for gone: the
+ * target removes its copy after the hand-over wait, and the source, its step failed, resumes; a
+ * source whose connection is reset redials at once, well within the step's time. Two instances
+ * would need a reset followed by a partition before the source reconnects, with the INSTALL's
+ * answer lost.
+ *
+ * <p>Known limit: a target that dies after the relocation takes the component with it, since its
+ * state and the messages forwarded to it lived only there. Closing it needs the source to keep the
+ * snapshot and what it forwarded until the hand-over is confirmed, and to resume from them when
+ * the target left without a goodbye.
  *
  * <h3>Why nothing is lost, duplicated or reordered</h3>
  * Every message for the component is in exactly one place: handled at the source, kept there,

@@ -5,8 +5,11 @@ import static org.junit.jupiter.api.Assertions.assertInstanceOf;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
+import example.counter.Counted;
 import example.counter.ReportingCounter;
+import example.counter.Seq;
 import io.etherware.core.component.RequestFailedException;
+import io.etherware.core.component.Shell;
 import io.etherware.core.kernel.Endpoint;
 import io.etherware.core.kernel.ProfileResolutionException;
 import io.etherware.core.message.Profile;
@@ -20,6 +23,7 @@ import java.nio.file.Path;
 import java.time.Duration;
 import java.util.List;
 import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.ExecutionException;
 import java.util.concurrent.TimeUnit;
 import org.junit.jupiter.api.Test;
@@ -32,8 +36,9 @@ import org.junit.jupiter.params.provider.CsvSource;
  * class path. A stateful counter under a steady stream of sequence-numbered messages moves there
  * and back with nothing lost, duplicated or reordered; when the target JVM is killed inside the
  * PREPARE or the INSTALL step of a migration, the counter resumes at the source with nothing lost;
- * when the source JVM is killed inside the PREPARE, snapshot or INSTALL step, the target gives the
- * migration up and keeps nothing of it.
+ * when the source JVM is killed inside the PREPARE step or the snapshot, the target gives the
+ * migration up and keeps nothing of it; when it is killed after sending the INSTALL, the target runs
+ * the counter from the state handed over.
  */
 class MigrationAcrossJvmsIT {
 
@@ -119,6 +124,8 @@ class MigrationAcrossJvmsIT {
             } finally {
                 stop(b);
             }
+            Await.until("B's connections closed", () -> a.net.peer("jvm-b").map(peer -> !peer.connected()).orElse(true));
+            assertTrue(!a.net.leftWithoutGoodbye("jvm-b", Duration.ZERO), "B closed its messenger: it said goodbye");
         }
     }
 
@@ -162,18 +169,16 @@ class MigrationAcrossJvmsIT {
     }
 
     /**
-     * The source JVM is killed (SIGKILL) inside a step of a migration to this JVM: while this node
-     * constructs the new instance (PREPARE), while the source takes the state (the snapshot), or
-     * while this node restores it (INSTALL). The component dies with its node, as it would without
-     * a migration (no hand-over came, so this node must not run it); this node gives
-     * the migration up after its waits, counts it as abandoned, and keeps nothing of it: no
-     * prepared instance, no held copy, no arrival profile.
+     * The source JVM is killed (SIGKILL) inside a step of a migration to this JVM before its state
+     * left: while this node constructs the new instance (PREPARE), or while the source takes the
+     * state (the snapshot). The component dies with its node, as it would without a migration;
+     * this node gives the migration up after its waits, counts it as abandoned, and keeps nothing
+     * of it: no prepared instance, no arrival profile.
      */
     @ParameterizedTest(name = "source killed in {0}")
     @CsvSource(nullValues = "none", value = {
         "PREPARE, none, example.counter.ReportingCounter$SlowConstruct",
-        "SNAPSHOT, example.counter.ReportingCounter$SlowSnapshot, none",
-        "INSTALL, none, example.counter.ReportingCounter$SlowRestore"})
+        "SNAPSHOT, example.counter.ReportingCounter$SlowSnapshot, none"})
     void shouldKeepNothingOfTheMigrationWhenTheSourceJvmIsKilledDuringAStep(String step, String classAtSource,
             String classHere) throws Exception {
         try (var a = sourceWithCounter()) {
@@ -184,19 +189,11 @@ class MigrationAcrossJvmsIT {
                 assertInstanceOf(Endpoint.Remote.class, a.node.registry().resolve(COUNTER), "B hosts the counter");
 
                 // B moves it back here, and dies in the middle.
-                int restoresBefore = ReportingCounter.SlowRestore.restoring.get();
                 var back = Management.migrate(a.node, "jvm-b", new MigrateRequest(COUNTER, "jvm-a", classHere, null,
                         null), Duration.ofSeconds(5));
-                if (step.equals("INSTALL")) {
-                    Await.until("the restore here began", () -> ReportingCounter.SlowRestore.restoring.get() > restoresBefore);
-                } else {
-                    Thread.sleep(500); // inside the 1.5 s step
-                }
+                Thread.sleep(500); // inside the 1.5 s step
                 b.destroyForcibly();
                 assertTrue(b.waitFor(30, TimeUnit.SECONDS), "the source JVM is gone");
-                if (step.equals("INSTALL")) {
-                    Await.until("the held copy registered here", () -> arrivalProfiles(a).size() == 1);
-                }
 
                 Await.until(() -> step + ": abandoned " + a.management.abandonedInCount() + ", arrival profiles "
                         + arrivalProfiles(a), 30_000, () -> a.management.abandonedInCount() == 1);
@@ -207,6 +204,69 @@ class MigrationAcrossJvmsIT {
                 var error = assertThrows(ExecutionException.class, () -> back.get(60, TimeUnit.SECONDS));
                 assertInstanceOf(RequestFailedException.class, error.getCause(), "the request to the dead node"
                         + " fails when it times out");
+            } finally {
+                b.destroyForcibly();
+            }
+        }
+    }
+
+    /**
+     * The source JVM is killed (SIGKILL) after it sent the INSTALL of a migration to this JVM:
+     * while this node restores the state (the restore takes 1.5 s, so the INSTALL is not even
+     * answered), or as soon as the state is installed here, while the source relocates and hands
+     * over (a race: the hand-over usually arrives first). The source holds the component, or has
+     * forwarded it, since it sent the INSTALL, and being dead it never resumes it; so this node runs
+     * it, with the state handed over: it takes it over once the source has left without a goodbye and
+     * stayed away for a step's time, or admits it if the hand-over came. Exactly one instance runs,
+     * here, and counts on from that state; nothing of the migration stays registered.
+     */
+    @ParameterizedTest(name = "source killed {0}")
+    @CsvSource({"in INSTALL, true", "after INSTALL, false"})
+    void shouldRunTheComponentHereWhenTheSourceJvmIsKilledAfterSendingTheInstall(String when, boolean slowRestore)
+            throws Exception {
+        try (var a = sourceWithCounter()) {
+            var reports = new CopyOnWriteArrayList<Counted>();
+            a.node.add(ReportingCounter.SINK, () -> (message, context) -> reports.add((Counted) message.contents()));
+            Process b = startPeer(a, "jvm-b");
+            try {
+                Management.migrate(a.node, "jvm-a", COUNTER, "jvm-b").get(60, TimeUnit.SECONDS);
+                for (long i = 0; i < 5; i++) {
+                    a.node.send(COUNTER, new Seq(i), SeqStream.QOS);
+                }
+                Await.until("five handled at B", () -> reports.size() == 5);
+
+                int restoresBefore = ReportingCounter.SlowRestore.restoring.get();
+                String classHere = slowRestore ? ReportingCounter.SlowRestore.class.getName() : null;
+                var back = Management.migrate(a.node, "jvm-b", new MigrateRequest(COUNTER, "jvm-a", classHere, null,
+                        null), Duration.ofSeconds(5));
+                if (slowRestore) {
+                    Await.until("the restore here began", () -> ReportingCounter.SlowRestore.restoring.get() > restoresBefore);
+                } else {
+                    Await.until("the state installed here", () -> !arrivalProfiles(a).isEmpty()
+                            || resolveOrNull(a, COUNTER) instanceof Endpoint.Local);
+                }
+                b.destroyForcibly();
+                assertTrue(b.waitFor(30, TimeUnit.SECONDS), "the source JVM is gone");
+                Await.until("B seen gone without a goodbye", () -> a.net.leftWithoutGoodbye("jvm-b", Duration.ZERO));
+
+                Await.until(() -> when + ": taken over " + a.management.takenOverInCount() + ", handed over "
+                        + a.management.migratedInCount() + ", arrival profiles " + arrivalProfiles(a), 30_000,
+                        () -> a.management.takenOverInCount() + a.management.migratedInCount() == 1
+                                && arrivalProfiles(a).isEmpty());
+                if (slowRestore) {
+                    assertEquals(1, a.management.takenOverInCount(), "no hand-over can come: taken over");
+                }
+                assertEquals(0, a.management.abandonedInCount(), "not given up");
+                assertInstanceOf(Endpoint.Local.class, a.node.registry().resolve(COUNTER), "it runs here");
+                assertEquals(Shell.State.RUNNING, a.node.shell(COUNTER).state());
+                a.node.send(COUNTER, new Seq(5), SeqStream.QOS);
+                Await.until("the next one handled here", () -> reports.size() == 6);
+                assertEquals(new Counted(5, 6), reports.getLast(), "counting on from the state handed over");
+                if (slowRestore) {
+                    var error = assertThrows(ExecutionException.class, () -> back.get(60, TimeUnit.SECONDS));
+                    assertInstanceOf(RequestFailedException.class, error.getCause(), "the request to the dead"
+                            + " node fails when it times out");
+                }
             } finally {
                 b.destroyForcibly();
             }

@@ -12,6 +12,7 @@ import io.etherware.services.management.MigrationStep;
 import io.etherware.services.management.MigrationStep.Phase;
 import io.etherware.services.management.MigrationStepDone;
 import java.net.URLClassLoader;
+import java.time.Duration;
 import java.util.Map;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.ConcurrentHashMap;
@@ -20,6 +21,7 @@ import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicReference;
 import java.util.concurrent.atomic.LongAdder;
 import java.util.function.BiConsumer;
+import java.util.function.Predicate;
 import java.util.function.Supplier;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -29,9 +31,11 @@ import org.slf4j.LoggerFactory;
  * {@link Phase#INSTALL} restores the shipped state into it and registers it <em>held</em> under the
  * migration's arrival profile ({@link ComponentHost#addHeld}), {@link Phase#HANDOVER} admits it under its
  * own profile and releases it ({@link ComponentHost#admit}) once the source has forwarded the messages it
- * held. A component installed but never handed over within
- * {@link ManagementConfig#handoverWaitNs()} is removed again: its source has resumed it by then
- * (or died with it). An instance prepared but never installed is discarded after
+ * held. A component installed whose source left without a goodbye (its process ended) and stayed
+ * away for a migration step's time is taken over: admitted with what was forwarded, since a dead
+ * source resumes nothing. One installed but otherwise never handed over within
+ * {@link ManagementConfig#handoverWaitNs()} is removed again: its source has resumed it by then.
+ * An instance prepared but never installed is discarded after
  * {@code settleWait + 2 × migrationStepTimeout + handoverWait}: by then its source has sent the
  * INSTALL (it waits at most {@code settleWait} and a step for the hold, then a step for the
  * snapshot), or resumed the component, or died; the hand-over wait is the margin for a late
@@ -48,6 +52,8 @@ import org.slf4j.LoggerFactory;
 public final class MigrationTarget {
 
     private static final Logger log = LoggerFactory.getLogger(MigrationTarget.class);
+    /** How often an installed component's source is looked at until its hand-over. */
+    private static final long SOURCE_WATCH_NS = TimeUnit.MILLISECONDS.toNanos(100);
 
     /** A prepared instance, bound to the node whose PREPARE made it. */
     private record Prepared(String fromNode, ImplementationLoader.Loaded loaded, Component instance, long loadNs) {
@@ -66,6 +72,10 @@ public final class MigrationTarget {
     private final BiConsumer<Profile, URLClassLoader> installed;
     /** Counts the migrations into this node given up here (prepared or installed, never handed over). */
     private final LongAdder abandoned;
+    /** Counts the installed components taken over here because their source left without a goodbye. */
+    private final LongAdder takenOver;
+    /** Whether a node left without a goodbye and has stayed away for {@link #sourceGoneAfter}. */
+    private final Predicate<String> sourceGone;
     private final Map<Profile, Prepared> prepared = new ConcurrentHashMap<>();
     private final Map<Profile, Arrived> arrived = new ConcurrentHashMap<>();
 
@@ -73,16 +83,30 @@ public final class MigrationTarget {
      * @param continuations where answers that wait are assembled (the service's steps thread)
      * @param installed     told when a migrated component is handed over, with its jar loader
      * @param abandoned     counts the migrations given up here
+     * @param takenOver     counts the installed components taken over because their source left
+     * @param sourceGone    whether a node left without a goodbye at least {@link #sourceGoneAfter}
+     *                      ago and has not come back (see {@code NetworkMessenger.leftWithoutGoodbye})
      */
     public MigrationTarget(ComponentHost kernel, ManagementConfig config, ImplementationLoader loader,
                            Executor continuations, BiConsumer<Profile, URLClassLoader> installed,
-                           LongAdder abandoned) {
+                           LongAdder abandoned, LongAdder takenOver, Predicate<String> sourceGone) {
         this.kernel = kernel;
         this.config = config;
         this.loader = loader;
         this.continuations = continuations;
         this.installed = installed;
         this.abandoned = abandoned;
+        this.takenOver = takenOver;
+        this.sourceGone = sourceGone;
+    }
+
+    /**
+     * How long a source must have been gone, without a goodbye, before an installed component is
+     * taken over: a migration step's time, many redial delays, so that a live source whose
+     * connection was only reset is back by then.
+     */
+    public static Duration sourceGoneAfter(ManagementConfig config) {
+        return Duration.ofNanos(config.migrationStepTimeoutNs());
     }
 
     /**
@@ -169,6 +193,7 @@ public final class MigrationTarget {
         arrived.put(profile, arrival);
         CompletableFuture.delayedExecutor(config.handoverWaitNs(), TimeUnit.NANOSECONDS)
                 .execute(() -> giveUp(profile, arrival));
+        watchSource(profile, arrival);
         return new MigrationStepDone(Phase.INSTALL, profile, type, kernel.clock().nanoTime() - startNs, -1);
     }
 
@@ -227,6 +252,44 @@ public final class MigrationTarget {
                 + " source, node '{}', resumed it or is gone)", kernel.nodeId(), profile,
                 TimeUnit.NANOSECONDS.toMillis(preparedKeepNs(config)), ready.fromNode());
         ready.loaded().discard();
+    }
+
+    /**
+     * Until the hand-over (or the give-up), looks every {@link #SOURCE_WATCH_NS} whether the
+     * source left without a goodbye and stayed away: it then never sends the hand-over, nor
+     * resumes the component, which it holds (or forwarded) since it sent the INSTALL; so the
+     * component is taken over here.
+     */
+    private void watchSource(Profile profile, Arrived arrival) {
+        CompletableFuture.delayedExecutor(SOURCE_WATCH_NS, TimeUnit.NANOSECONDS).execute(() -> {
+            if (arrived.get(profile) != arrival) {
+                return; // handed over, or given up
+            }
+            if (sourceGone.test(arrival.fromNode())) {
+                takeOver(profile, arrival);
+            } else {
+                watchSource(profile, arrival);
+            }
+        });
+    }
+
+    /** The source left after the INSTALL: admits the component with what it forwarded, if anything. */
+    private void takeOver(Profile profile, Arrived arrival) {
+        if (!arrived.remove(profile, arrival)) {
+            return;
+        }
+        try {
+            kernel.admit(arrival.arrival(), 0);
+        } catch (RuntimeException e) {
+            log.warn("node {}: taking migrated '{}' over failed: {}", kernel.nodeId(), profile, e.toString());
+            return;
+        }
+        installed.accept(profile, arrival.loaded().loader());
+        takenOver.increment();
+        log.warn("node {}: the source of migrated '{}', node '{}', left without a goodbye after its INSTALL (its"
+                + " process ended?) and has not come back for {} ms; '{}' runs here now, from the state it handed"
+                + " over; what the source still held of its messages is lost with it", kernel.nodeId(), profile,
+                arrival.fromNode(), sourceGoneAfter(config).toMillis(), profile);
     }
 
     /** The hand-over did not come in time: the source resumed the component (or died); remove this copy. */
