@@ -30,7 +30,9 @@ public interface ComponentHost extends Kernel {
      *
      * @param profile the exact profile of a local component, or a query that matches only it
      * @return a future that completes at the boundary: at once on the calling thread if the
-     *         component is idle, else on the dispatcher thread that ends its current handling
+     *         component is idle, else on the dispatcher thread that ends its current handling;
+     *         failed with an {@link IllegalStateException} if the component is still arriving by
+     *         migration ({@link #addHeld}, not yet {@link #admit admitted})
      * @throws ProfileResolutionException if the profile does not resolve
      * @throws IllegalArgumentException   if it resolves to a component of another node
      */
@@ -47,7 +49,8 @@ public interface ComponentHost extends Kernel {
      * @param profile    the exact profile of a local component, or a query that matches only it
      * @param settleWait how long to wait for the outcomes of its requests; zero holds at the next
      *                   boundary
-     * @return a future that completes when the component is held
+     * @return a future that completes when the component is held; failed as
+     *         {@link #holdAsync(Profile)}'s is
      * @throws ProfileResolutionException if the profile does not resolve
      * @throws IllegalArgumentException   if it resolves to a component of another node, or
      *                                    {@code settleWait} is negative
@@ -147,6 +150,9 @@ public interface ComponentHost extends Kernel {
      * @throws ProfileResolutionException if the profile does not resolve
      * @throws IllegalArgumentException   if it is a query, or belongs to a component of another
      *                                    node
+     * @throws IllegalStateException      if the component is still arriving by migration (not yet
+     *                                    admitted): the messages its source forwards would come in
+     *                                    after it left
      */
     CompletableFuture<Void> relocateAsync(Profile profile, RemoteRoute route);
 

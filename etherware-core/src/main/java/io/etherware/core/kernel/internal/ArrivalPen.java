@@ -8,6 +8,7 @@ import java.util.List;
 import java.util.concurrent.atomic.AtomicBoolean;
 import java.util.concurrent.atomic.AtomicInteger;
 import java.util.concurrent.atomic.AtomicLong;
+import java.util.concurrent.locks.ReentrantLock;
 import java.util.function.Consumer;
 
 /**
@@ -31,8 +32,8 @@ import java.util.function.Consumer;
  *
  * <p>Thread-safety: senders call {@link #pens}, {@link #defer} and {@link #arrived}, the
  * component's owner {@link #leftPenned}, the management service {@link #admitAfter}. Deferral
- * and its end take the pen's lock (only until the deferral ends: afterwards {@link #defer} reads
- * a volatile flag); the rest is lock-free.
+ * takes the pen's lock for an append (only until the deferral ends: afterwards {@link #defer}
+ * reads a volatile flag), and a flush only to take a batch; the rest is lock-free.
  */
 final class ArrivalPen {
 
@@ -44,6 +45,8 @@ final class ArrivalPen {
     /** Submits a deferred job to the scheduler (or counts it discarded if refused). */
     private final Consumer<Job> submit;
     private final Object lock = new Object();
+    /** Held by the one thread flushing. */
+    private final ReentrantLock flushing = new ReentrantLock();
     /** Penned jobs kept until the deferral ends, in the order they were made; guarded by lock. */
     private List<Job> deferred = new ArrayList<>();
     /** Whether penned jobs are kept here; false once the admission (or a leave) submitted them. */
@@ -133,20 +136,33 @@ final class ArrivalPen {
 
     /**
      * Ends the deferral: submits the deferred jobs in the order they were made. At the admission,
-     * and when the component is removed or relocated before it; idempotent. The lock is held
-     * throughout, so a sender whose job is not deferred submits it after these.
+     * and when the component is removed or relocated before it; idempotent. The jobs are submitted
+     * outside the pen's lock, batch by batch, so that a sender deferring meanwhile waits for no
+     * submission; its job joins the next batch, and the deferral ends only when a batch comes out
+     * empty, so a sender whose job is not deferred submits it after all of these. One flush at a
+     * time.
      */
     void flush() {
-        synchronized (lock) {
-            if (!deferring) {
-                return;
-            }
-            while (!deferred.isEmpty()) { // a scheduler that ran a job inline could defer more
-                List<Job> due = deferred;
-                deferred = new ArrayList<>();
+        flushing.lock();
+        try {
+            while (true) {
+                List<Job> due;
+                synchronized (lock) {
+                    if (!deferring) {
+                        return;
+                    }
+                    if (deferred.isEmpty()) {
+                        deferring = false;
+                        deferred = List.of();
+                        return;
+                    }
+                    due = deferred;
+                    deferred = new ArrayList<>();
+                }
                 due.forEach(submit);
             }
-            deferring = false;
+        } finally {
+            flushing.unlock();
         }
     }
 

@@ -221,12 +221,24 @@ public final class KernelCore implements ComponentHost, JobRunner {
 
     @Override
     public CompletableFuture<Void> holdAsync(Profile profile) {
-        return reconfiguration.holdAsync(shells.local(profile));
+        LocalShell shell = shells.local(profile);
+        try {
+            shell.requireAdmitted("hold");
+        } catch (IllegalStateException e) {
+            return CompletableFuture.failedFuture(e);
+        }
+        return reconfiguration.holdAsync(shell);
     }
 
     @Override
     public CompletableFuture<Void> holdAsync(Profile profile, Duration settleWait) {
-        return reconfiguration.holdAsync(shells.local(profile), settleWait);
+        LocalShell shell = shells.local(profile);
+        try {
+            shell.requireAdmitted("hold");
+        } catch (IllegalStateException e) {
+            return CompletableFuture.failedFuture(e);
+        }
+        return reconfiguration.holdAsync(shell, settleWait);
     }
 
     @Override
@@ -373,6 +385,7 @@ public final class KernelCore implements ComponentHost, JobRunner {
         if (!shell.profile().equals(profile)) {
             throw new IllegalArgumentException("relocate needs the exact profile '" + shell.profile() + "', not a query");
         }
+        shell.requireAdmitted("relocate");
         return reconfiguration.relocateAsync(shell, route, () -> shells.detach(shell))
                 .thenRun(() -> shells.retire(shell));
     }

@@ -262,6 +262,20 @@ public final class LocalShell implements Shell {
         return pen;
     }
 
+    /**
+     * Refuses to move or hold for a move a component that is still arriving by migration: the
+     * messages its source forwards would come in after it left, behind later ones.
+     *
+     * @throws IllegalStateException if it arrived by migration and is not admitted yet
+     */
+    void requireAdmitted(String what) {
+        ArrivalPen arrived = pen;
+        if (arrived != null && !arrived.isAdmitted()) {
+            throw new IllegalStateException("'" + name + "' is still arriving by migration (not yet handed over here);"
+                    + " " + what + " it once it runs here");
+        }
+    }
+
     /** For a job about to be made: whether it is penned (see {@link ArrivalPen#pens}). */
     boolean pens(Message message) {
         ArrivalPen arrived = pen;
@@ -310,6 +324,7 @@ public final class LocalShell implements Shell {
         removed = true;
         logic.markStopped();
         endDeferral();
+        gate.endHoldOnLeave(); // an arrival's kept jobs are resolved anew, as at a removal
         gate.leave();
         return true;
     }
@@ -353,7 +368,6 @@ public final class LocalShell implements Shell {
                 ((PendingRequest) kept.target()).settle();
             }
         });
-        endDeferral(); // counted already: forwarded when taken, after those queued before them
         if ((int) QUEUED.getVolatile(this) == 0) {
             trySwitch();
         }
