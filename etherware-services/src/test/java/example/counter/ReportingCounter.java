@@ -109,6 +109,20 @@ public class ReportingCounter implements Component {
         }
     }
 
+    /**
+     * Its restore takes {@link #RESTORE_MS}, longer than the migration step timeout of the tests
+     * (2 s): the source's INSTALL step fails, and it resumes the component, before this is installed.
+     */
+    public static class TooSlowRestore extends ReportingCounter {
+        public static final long RESTORE_MS = 3_000;
+
+        @Override
+        public void restore(ComponentState state) throws Exception {
+            Thread.sleep(RESTORE_MS);
+            super.restore(state);
+        }
+    }
+
     /** Its restore takes {@link #RESTORE_MS}: the target of a migration that does not answer in time. */
     public static class SlowRestore extends ReportingCounter {
         public static final long RESTORE_MS = 1_500;

@@ -13,6 +13,7 @@ import io.etherware.services.management.internal.MigrationSource;
 import io.etherware.services.management.internal.MigrationTarget;
 import io.etherware.services.network.NetworkMessenger;
 import java.util.Objects;
+import java.util.Optional;
 import java.util.concurrent.atomic.AtomicReference;
 
 /**
@@ -183,8 +184,8 @@ public final class ManagementService implements Component {
         // which may be waiting for the other node's answers.
         this.migrations = new Migrations(running, worker, steps, new MigrationSource(kernel, config, network, access),
                 new MigrationTarget(kernel, config, loader, steps.continuations(), jarLoaders::installed,
-                        counters.abandonedIn, counters.takenOverIn, network == null ? node -> false
-                                : node -> network.leftWithoutGoodbye(node, MigrationTarget.sourceGoneAfter(config))));
+                        counters.abandonedIn, counters.takenOverIn,
+                        network == null ? node -> Optional.empty() : network::goneWithoutGoodbye));
     }
 
     @Override
@@ -265,9 +266,10 @@ public final class ManagementService implements Component {
 
     /**
      * Migrations into this node completed here without their hand-over, because their source left
-     * without a goodbye after sending the INSTALL (its process ended: see
-     * {@link NetworkMessenger#leftWithoutGoodbye}) and did not come back within a migration step's
-     * time: the component runs here with the state it handed over. Any thread.
+     * without a goodbye after sending the INSTALL and before it could have resumed the component
+     * (its process ended: see {@link NetworkMessenger#goneWithoutGoodbye}), and did not come back
+     * within a migration step's time: the component runs here with the state it handed over. Any
+     * thread.
      *
      * @return the count so far (the instances that restarts make after {@link #install} share it)
      */

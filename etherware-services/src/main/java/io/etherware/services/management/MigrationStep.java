@@ -24,9 +24,13 @@ import java.util.Objects;
  * @param state         {@link Phase#INSTALL}: the component's state, or null if it has none
  * @param forwarded     {@link Phase#HANDOVER}: how many messages the source forwarded to the
  *                      arrival profile before it; the target admits the component once they are in
+ * @param stepTimeoutNs the source's {@code migrationStepTimeout}: how long it waits for the step's
+ *                      answer; {@link Phase#INSTALL}: so it resumes the component no sooner than
+ *                      this after sending it, which a target taking the component over from a
+ *                      source that died counts on (0: not said, for a step that needs no such word)
  */
 public record MigrationStep(Phase phase, Profile target, String fromNode, Profile arrival, String className, String jarPath,
-                            String configuration, ComponentState state, long forwarded)
+                            String configuration, ComponentState state, long forwarded, long stepTimeoutNs)
         implements Contents {
 
     /**
@@ -40,6 +44,9 @@ public record MigrationStep(Phase phase, Profile target, String fromNode, Profil
         Objects.requireNonNull(target, "target");
         Objects.requireNonNull(fromNode, "fromNode");
         Objects.requireNonNull(arrival, "arrival");
+        if (stepTimeoutNs < 0) {
+            throw new IllegalArgumentException("stepTimeoutNs=" + stepTimeoutNs + " must not be negative");
+        }
     }
 
     /** The steps, in the order the source sends them. */

@@ -99,7 +99,7 @@ final class Migrations {
             // On the dispatcher, like an upgrade's swap: restore and registration are on the gap's
             // path, and the class was loaded off the dispatchers by PREPARE.
             try {
-                replyBehindEverything(message, migrationTarget.install(step));
+                replyBehindEverything(message, migrationTarget.install(step, message.timeStamp()));
             } catch (LoadFailure e) {
                 failMigration(message, step.target(), e.reason(), e.getMessage());
             } catch (RuntimeException e) {

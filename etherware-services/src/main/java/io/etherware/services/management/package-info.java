@@ -113,19 +113,24 @@
  *       <td>the target runs the component, from the state handed over and every message forwarded
  *       to it: once the source has left without a goodbye (its connections ended by end of stream
  *       or reset, with no BYE: how a process that ends looks, see
- *       {@link io.etherware.services.network.NetworkMessenger#leftWithoutGoodbye}) and stayed away
- *       for {@code migrationStepTimeout}, it admits its held copy, counted
+ *       {@link io.etherware.services.network.NetworkMessenger#goneWithoutGoodbye}) before it could
+ *       have resumed the component, and stayed away for {@code migrationStepTimeout}, it admits its
+ *       held copy, counted
  *       ({@link io.etherware.services.management.ManagementService#takenOverInCount()}). The
  *       messages the source still held die with it, as they would without a migration (tested
  *       with the source's JVM killed while the target restores, and right after the install)</td></tr>
  * </table>
  * Why the take-over runs one instance: from the INSTALL on, the source resumes the component only
- * if its step fails, and a source that died resumes nothing. A source that is alive but cannot be
- * reached (a partition: its connections end by heartbeat timeout) is not taken for gone: the
- * target removes its copy after the hand-over wait, and the source, its step failed, resumes; a
- * source whose connection is reset redials at once, well within the step's time. Two instances
- * would need a reset followed by a partition before the source reconnects, with the INSTALL's
- * answer lost.
+ * if that step fails, which is no sooner than its step timeout after it sent it (the INSTALL says
+ * how long that is). The target takes over only if the source's process left before then (less
+ * 50 ms for the error of the translated time stamp): it died holding the component, or having
+ * forwarded it, and resumed nothing. One that left later may have resumed the component and died
+ * with it, so the target gives its copy up after the hand-over wait, as it does for a source that
+ * is alive but cannot be reached (a partition: its connections end by heartbeat timeout, which is
+ * not taken for leaving). A source whose connection is reset redials at once, well within the
+ * step's time; a restart gives it a new incarnation, which proves the old process gone. Two
+ * instances would need a live source's connection to be reset and then cut off before it
+ * reconnects, with the INSTALL's answer lost.
  *
  * <p>Known limit: a target that dies after the relocation takes the component with it, since its
  * state and the messages forwarded to it lived only there. Closing it needs the source to keep the

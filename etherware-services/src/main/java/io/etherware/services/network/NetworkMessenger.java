@@ -144,25 +144,22 @@ public final class NetworkMessenger implements AutoCloseable {
     }
 
     /**
-     * Whether node {@code nodeId} left without a goodbye: its last connection ended by end of
-     * stream or a socket error with no BYE before it, at least {@code forAtLeast} ago, and it has
-     * not connected again since. That is how the end of its process looks (its system closes its
-     * sockets), or a reset by its host; a node that closes its messenger says BYE first, and a
-     * partition ends connections by heartbeat timeout, so neither counts. A live node whose
-     * connection was reset redials (or is redialed) at once, so a {@code forAtLeast} of a few
-     * redial delays tells the two apart, except in a partition that begins with a reset. False for
-     * a node not known here, or forgotten after {@link NetworkConfig#peerDownGraceNs()}.
+     * How long ago the process of node {@code nodeId} left without a goodbye, if it did: its last
+     * connection ended by end of stream or a socket error with no BYE before it, and no connection
+     * of the same process (its incarnation) has come since; one of a restarted process may have.
+     * That is how the end of a process looks (its system closes its sockets), or a reset by its
+     * host; a node that closes its messenger says BYE first, and a partition ends connections by
+     * heartbeat timeout, so neither counts. A live node whose connection was reset redials (or is
+     * redialed) within a few redial delays, so a wait of that much more tells the two apart, except
+     * in a partition that begins with a reset. Empty for a node not known here, or forgotten after
+     * {@link NetworkConfig#peerDownGraceNs()}.
      *
-     * @param nodeId     the other node's id
-     * @param forAtLeast how long it must have been gone, not negative
-     * @return whether it left so, that long ago
+     * @param nodeId the other node's id
+     * @return how long ago it left so, or empty
      */
-    public boolean leftWithoutGoodbye(String nodeId, Duration forAtLeast) {
-        Objects.requireNonNull(nodeId, "nodeId");
-        if (forAtLeast.isNegative()) {
-            throw new IllegalArgumentException("forAtLeast=" + forAtLeast + " must not be negative");
-        }
-        return engine.leftWithoutGoodbye(nodeId, forAtLeast.toNanos());
+    public Optional<Duration> goneWithoutGoodbye(String nodeId) {
+        long agoNs = engine.goneWithoutGoodbyeNs(Objects.requireNonNull(nodeId, "nodeId"));
+        return agoNs < 0 ? Optional.empty() : Optional.of(Duration.ofNanos(agoNs));
     }
 
     /**

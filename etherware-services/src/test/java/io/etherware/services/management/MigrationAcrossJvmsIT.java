@@ -22,6 +22,7 @@ import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
 import java.util.List;
+import java.util.Optional;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.ExecutionException;
@@ -125,7 +126,7 @@ class MigrationAcrossJvmsIT {
                 stop(b);
             }
             Await.until("B's connections closed", () -> a.net.peer("jvm-b").map(peer -> !peer.connected()).orElse(true));
-            assertTrue(!a.net.leftWithoutGoodbye("jvm-b", Duration.ZERO), "B closed its messenger: it said goodbye");
+            assertEquals(Optional.empty(), a.net.goneWithoutGoodbye("jvm-b"), "B closed its messenger: it said goodbye");
         }
     }
 
@@ -225,8 +226,7 @@ class MigrationAcrossJvmsIT {
     void shouldRunTheComponentHereWhenTheSourceJvmIsKilledAfterSendingTheInstall(String when, boolean slowRestore)
             throws Exception {
         try (var a = sourceWithCounter()) {
-            var reports = new CopyOnWriteArrayList<Counted>();
-            a.node.add(ReportingCounter.SINK, () -> (message, context) -> reports.add((Counted) message.contents()));
+            List<Counted> reports = sinkAt(a);
             Process b = startPeer(a, "jvm-b");
             try {
                 Management.migrate(a.node, "jvm-a", COUNTER, "jvm-b").get(60, TimeUnit.SECONDS);
@@ -247,7 +247,7 @@ class MigrationAcrossJvmsIT {
                 }
                 b.destroyForcibly();
                 assertTrue(b.waitFor(30, TimeUnit.SECONDS), "the source JVM is gone");
-                Await.until("B seen gone without a goodbye", () -> a.net.leftWithoutGoodbye("jvm-b", Duration.ZERO));
+                Await.until("B seen gone without a goodbye", () -> a.net.goneWithoutGoodbye("jvm-b").isPresent());
 
                 Await.until(() -> when + ": taken over " + a.management.takenOverInCount() + ", handed over "
                         + a.management.migratedInCount() + ", arrival profiles " + arrivalProfiles(a), 30_000,
@@ -271,6 +271,50 @@ class MigrationAcrossJvmsIT {
                 b.destroyForcibly();
             }
         }
+    }
+
+    /**
+     * The source's INSTALL step times out (this node restores for 3 s, the step waits 2 s), so the
+     * source resumes the counter and handles messages; then its JVM is killed (SIGKILL). Its
+     * process left after it could have resumed the counter, so this node must not take its stale
+     * copy over (the messages handled at the source since would be undone): it gives it up after
+     * the hand-over wait, and the counter is gone with the node that last ran it.
+     */
+    @Test
+    void shouldNotTakeOverACopyWhoseSourceResumedTheComponentBeforeItDied() throws Exception {
+        try (var a = sourceWithCounter()) {
+            List<Counted> reports = sinkAt(a);
+            Process b = startPeer(a, "jvm-b");
+            try {
+                Management.migrate(a.node, "jvm-a", COUNTER, "jvm-b").get(60, TimeUnit.SECONDS);
+                var back = Management.migrate(a.node, "jvm-b", new MigrateRequest(COUNTER, "jvm-a",
+                        ReportingCounter.TooSlowRestore.class.getName(), null, null), Duration.ofSeconds(30));
+                var error = assertThrows(ExecutionException.class, () -> back.get(60, TimeUnit.SECONDS));
+                String why = assertInstanceOf(ManagementException.class, error.getCause()).failure().error();
+                assertTrue(why.contains("resumed at 'jvm-b'"), why);
+                a.node.send(COUNTER, new Seq(0), SeqStream.QOS); // handled at B, which runs it again
+                Await.until("handled at B after it resumed", () -> reports.size() == 1);
+                Await.until("the late copy installed here", () -> arrivalProfiles(a).size() == 1);
+
+                b.destroyForcibly();
+                assertTrue(b.waitFor(30, TimeUnit.SECONDS), "the source JVM is gone");
+                Await.until("B seen gone without a goodbye", () -> a.net.goneWithoutGoodbye("jvm-b").isPresent());
+                Await.until(() -> "given up: " + a.management.abandonedInCount() + ", taken over "
+                        + a.management.takenOverInCount(), 30_000, () -> a.management.abandonedInCount() == 1);
+                assertEquals(0, a.management.takenOverInCount(), "the stale copy was not taken over");
+                assertEquals(List.of(), arrivalProfiles(a));
+                assertTrue(!(resolveOrNull(a, COUNTER) instanceof Endpoint.Local), "this node does not run it");
+            } finally {
+                b.destroyForcibly();
+            }
+        }
+    }
+
+    /** Adds the counter's sink to {@code node}; returns the reports it collects. */
+    private static List<Counted> sinkAt(MigrationNode node) {
+        var reports = new CopyOnWriteArrayList<Counted>();
+        node.node.add(ReportingCounter.SINK, () -> (message, context) -> reports.add((Counted) message.contents()));
+        return reports;
     }
 
     private static List<Profile> arrivalProfiles(MigrationNode node) {

@@ -281,7 +281,7 @@ class MigrationIT {
             Profile inboxProfile = Profile.of("inbox");
             b.node.add(inboxProfile, () -> (message, context) -> inbox.add(message));
             var step = new MigrationStep(MigrationStep.Phase.PREPARE, COUNTER, "mig-a",
-                    Profile.of("etherware.arrival", "id", "forged"), ReportingCounter.class.getName(), null, null, null, 0);
+                    Profile.of("etherware.arrival", "id", "forged"), ReportingCounter.class.getName(), null, null, null, 0, 0);
             b.node.send(new Message(Management.profileOf("mig-b"), inboxProfile, b.node.clock().epochNanos(),
                     Management.REQUEST_QOS, step, new MessageId("mig-a", 1), null)
                     .withOrigin(Origin.direct("mig-c", true)));

@@ -44,6 +44,8 @@ final class RawPeer implements AutoCloseable {
     private final Socket socket;
     private final DataOutputStream out;
     private final DataInputStream in;
+    /** The incarnation its HELLO names: one process of the node. */
+    long incarnation = 0x1234_5678_9abcL;
 
     RawPeer(InetSocketAddress node) throws IOException {
         this(connected(node));
@@ -104,7 +106,7 @@ final class RawPeer implements AutoCloseable {
             out.writeInt(magic);
             out.writeShort(version);
             string(out, nodeId);
-            out.writeLong(0x1234_5678_9abcL); // incarnation
+            out.writeLong(incarnation);
             out.writeLong(System.currentTimeMillis() * 1_000_000L);
             out.writeInt(1 << 20);
             out.writeByte(2); // lanes, as the nodes under test run

@@ -92,7 +92,7 @@ public final class MigrationSource {
         // (i) The target loads and constructs while the component still runs here.
         long prepareStartNs = kernel.clock().nanoTime();
         step(toNode, new MigrationStep(Phase.PREPARE, profile, kernel.nodeId(), arrival, className, request.jarPath(),
-                request.configuration(), null, 0), stepNs);
+                request.configuration(), null, 0, stepNs), stepNs);
         long quiesceStartNs = kernel.clock().nanoTime();
         try (var raised = GapPriority.of(kernel, Management.profileOf(kernel.nodeId()), qos).raise()) {
             return moveHeld(profile, toNode, className, arrival, receivedNs, prepareStartNs, quiesceStartNs);
@@ -142,8 +142,8 @@ public final class MigrationSource {
                     + "); it resumed at '" + kernel.nodeId() + "'", cause);
         }
         try {
-            step(toNode, new MigrationStep(Phase.INSTALL, profile, kernel.nodeId(), arrival, null, null, null, state, 0),
-                    stepNs);
+            step(toNode, new MigrationStep(Phase.INSTALL, profile, kernel.nodeId(), arrival, null, null, null, state, 0,
+                    stepNs), stepNs);
         } catch (LoadFailure e) {
             kernel.release(profile);
             throw new LoadFailure(e.reason(), e.getMessage() + "; '" + profile + "' resumed at '" + kernel.nodeId()
@@ -174,7 +174,7 @@ public final class MigrationSource {
         String implementation = className;
         try {
             MigrationStepDone done = step(toNode, new MigrationStep(Phase.HANDOVER, profile, kernel.nodeId(), arrival,
-                    null, null, null, null, forwarded), stepNs + config.firstMessageWaitNs());
+                    null, null, null, null, forwarded, stepNs), stepNs + config.firstMessageWaitNs());
             firstEpochNs = done.firstHandlingEpochNs();
             implementation = done.implementation();
         } catch (LoadFailure e) {

@@ -14,6 +14,7 @@ import io.etherware.services.management.MigrationStepDone;
 import java.net.URLClassLoader;
 import java.time.Duration;
 import java.util.Map;
+import java.util.Optional;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.Executor;
@@ -21,7 +22,7 @@ import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicReference;
 import java.util.concurrent.atomic.LongAdder;
 import java.util.function.BiConsumer;
-import java.util.function.Predicate;
+import java.util.function.Function;
 import java.util.function.Supplier;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -54,14 +55,22 @@ public final class MigrationTarget {
     private static final Logger log = LoggerFactory.getLogger(MigrationTarget.class);
     /** How often an installed component's source is looked at until its hand-over. */
     private static final long SOURCE_WATCH_NS = TimeUnit.MILLISECONDS.toNanos(100);
+    /** Allowed for the error of the source's INSTALL time stamp, as NetworkTime translated it. */
+    private static final long CLOCK_MARGIN_NS = TimeUnit.MILLISECONDS.toNanos(50);
 
     /** A prepared instance, bound to the node whose PREPARE made it. */
     private record Prepared(String fromNode, ImplementationLoader.Loaded loaded, Component instance, long loadNs) {
     }
 
-    /** An installed component, bound to the node whose migration it is. */
+    /**
+     * An installed component, bound to the node whose migration it is.
+     *
+     * @param mayResumeAtNs from when (this node's {@code nanoTime}) its source may have resumed it,
+     *                      its INSTALL step failed: the step's sending plus the source's step timeout,
+     *                      less {@link #CLOCK_MARGIN_NS}
+     */
     private record Arrived(String fromNode, Profile arrival, ImplementationLoader.Loaded loaded,
-                           CompletableFuture<Long> firstHandlingNs) {
+                           CompletableFuture<Long> firstHandlingNs, long mayResumeAtNs) {
     }
 
     private final ComponentHost kernel;
@@ -74,8 +83,8 @@ public final class MigrationTarget {
     private final LongAdder abandoned;
     /** Counts the installed components taken over here because their source left without a goodbye. */
     private final LongAdder takenOver;
-    /** Whether a node left without a goodbye and has stayed away for {@link #sourceGoneAfter}. */
-    private final Predicate<String> sourceGone;
+    /** How long ago a node's process left without a goodbye, if it did. */
+    private final Function<String, Optional<Duration>> sourceGone;
     private final Map<Profile, Prepared> prepared = new ConcurrentHashMap<>();
     private final Map<Profile, Arrived> arrived = new ConcurrentHashMap<>();
 
@@ -84,12 +93,12 @@ public final class MigrationTarget {
      * @param installed     told when a migrated component is handed over, with its jar loader
      * @param abandoned     counts the migrations given up here
      * @param takenOver     counts the installed components taken over because their source left
-     * @param sourceGone    whether a node left without a goodbye at least {@link #sourceGoneAfter}
-     *                      ago and has not come back (see {@code NetworkMessenger.leftWithoutGoodbye})
+     * @param sourceGone    how long ago a node's process left without a goodbye, if it did (see
+     *                      {@code NetworkMessenger.goneWithoutGoodbye})
      */
     public MigrationTarget(ComponentHost kernel, ManagementConfig config, ImplementationLoader loader,
                            Executor continuations, BiConsumer<Profile, URLClassLoader> installed,
-                           LongAdder abandoned, LongAdder takenOver, Predicate<String> sourceGone) {
+                           LongAdder abandoned, LongAdder takenOver, Function<String, Optional<Duration>> sourceGone) {
         this.kernel = kernel;
         this.config = config;
         this.loader = loader;
@@ -105,8 +114,8 @@ public final class MigrationTarget {
      * taken over: a migration step's time, many redial delays, so that a live source whose
      * connection was only reset is back by then.
      */
-    public static Duration sourceGoneAfter(ManagementConfig config) {
-        return Duration.ofNanos(config.migrationStepTimeoutNs());
+    static long sourceGoneAfterNs(ManagementConfig config) {
+        return config.migrationStepTimeoutNs();
     }
 
     /**
@@ -146,8 +155,13 @@ public final class MigrationTarget {
         return new MigrationStepDone(Phase.PREPARE, profile, loaded.type().getName(), loadNs, -1);
     }
 
-    /** Dispatcher: restores the state into the prepared instance and registers it, held. */
-    public MigrationStepDone install(MigrationStep step) throws LoadFailure {
+    /**
+     * Dispatcher: restores the state into the prepared instance and registers it, held.
+     *
+     * @param sentEpochNs when the source sent the step, in this node's epoch clock (its time stamp,
+     *                    as NetworkTime translated it)
+     */
+    public MigrationStepDone install(MigrationStep step, long sentEpochNs) throws LoadFailure {
         Profile profile = step.target();
         Prepared ready = prepared.get(profile);
         if (ready == null) {
@@ -161,6 +175,9 @@ public final class MigrationTarget {
                     + "' was replaced meanwhile; send PREPARE again");
         }
         long startNs = kernel.clock().nanoTime();
+        long sentNs = startNs - Math.max(0, kernel.clock().epochNanos() - sentEpochNs);
+        // A source that does not say its step timeout is taken to share this node's.
+        long sourceStepNs = step.stepTimeoutNs() > 0 ? step.stepTimeoutNs() : config.migrationStepTimeoutNs();
         String type = ready.loaded().type().getName();
         try {
             if (step.state() != null) {
@@ -189,7 +206,8 @@ public final class MigrationTarget {
             ready.loaded().discard();
             throw new LoadFailure(Reason.ROLLED_BACK, "onStart of " + type + " threw (see the log); it was removed");
         }
-        var arrival = new Arrived(step.fromNode(), step.arrival(), ready.loaded(), firstHandlingNs);
+        var arrival = new Arrived(step.fromNode(), step.arrival(), ready.loaded(), firstHandlingNs,
+                sentNs + sourceStepNs - CLOCK_MARGIN_NS);
         arrived.put(profile, arrival);
         CompletableFuture.delayedExecutor(config.handoverWaitNs(), TimeUnit.NANOSECONDS)
                 .execute(() -> giveUp(profile, arrival));
@@ -256,21 +274,38 @@ public final class MigrationTarget {
 
     /**
      * Until the hand-over (or the give-up), looks every {@link #SOURCE_WATCH_NS} whether the
-     * source left without a goodbye and stayed away: it then never sends the hand-over, nor
-     * resumes the component, which it holds (or forwarded) since it sent the INSTALL; so the
+     * source's process left without a goodbye: it then never sends the hand-over, and, if it left
+     * before it could have resumed the component (its INSTALL step failing), never resumed it
+     * either, holding (or having forwarded) the component since it sent the INSTALL. Once it has
+     * stayed away for a step's time (a live source whose connection was reset is back by then), the
      * component is taken over here.
      */
     private void watchSource(Profile profile, Arrived arrival) {
         CompletableFuture.delayedExecutor(SOURCE_WATCH_NS, TimeUnit.NANOSECONDS).execute(() -> {
             if (arrived.get(profile) != arrival) {
-                return; // handed over, or given up
+                return; // handed over, taken over or given up
             }
-            if (sourceGone.test(arrival.fromNode())) {
+            long goneNs = goneBeforeResumeNs(arrival);
+            if (goneNs >= sourceGoneAfterNs(config)) {
                 takeOver(profile, arrival);
             } else {
                 watchSource(profile, arrival);
             }
         });
+    }
+
+    /**
+     * How long ago the source's process left without a goodbye, if it left before it could have
+     * resumed the component; -1 if it did not leave so (or left later: it may have resumed it, its
+     * INSTALL step having failed, and then died with it).
+     */
+    private long goneBeforeResumeNs(Arrived arrival) {
+        Optional<Duration> gone = sourceGone.apply(arrival.fromNode());
+        if (gone.isEmpty()) {
+            return -1;
+        }
+        long goneNs = gone.get().toNanos();
+        return kernel.clock().nanoTime() - goneNs < arrival.mayResumeAtNs() ? goneNs : -1;
     }
 
     /** The source left after the INSTALL: admits the component with what it forwarded, if anything. */
@@ -286,14 +321,26 @@ public final class MigrationTarget {
         }
         installed.accept(profile, arrival.loaded().loader());
         takenOver.increment();
-        log.warn("node {}: the source of migrated '{}', node '{}', left without a goodbye after its INSTALL (its"
-                + " process ended?) and has not come back for {} ms; '{}' runs here now, from the state it handed"
-                + " over; what the source still held of its messages is lost with it", kernel.nodeId(), profile,
-                arrival.fromNode(), sourceGoneAfter(config).toMillis(), profile);
+        log.warn("node {}: the source of migrated '{}', node '{}', left without a goodbye after its INSTALL, before"
+                + " it could have resumed it (its process ended?), and has not come back for {} ms; it runs here now,"
+                + " from the state handed over; what the source still held of its messages is lost with it",
+                kernel.nodeId(), profile, arrival.fromNode(), TimeUnit.NANOSECONDS.toMillis(sourceGoneAfterNs(config)));
     }
 
-    /** The hand-over did not come in time: the source resumed the component (or died); remove this copy. */
+    /**
+     * The hand-over did not come in time: the source resumed the component (or died after it could
+     * have); remove this copy. Put off while the source is gone in a way that makes the watch take
+     * the component over.
+     */
     private void giveUp(Profile profile, Arrived arrival) {
+        if (arrived.get(profile) != arrival) {
+            return;
+        }
+        if (goneBeforeResumeNs(arrival) >= 0) {
+            CompletableFuture.delayedExecutor(SOURCE_WATCH_NS, TimeUnit.NANOSECONDS)
+                    .execute(() -> giveUp(profile, arrival));
+            return;
+        }
         if (!arrived.remove(profile, arrival)) {
             return;
         }

@@ -319,7 +319,7 @@ final class Connection implements Runnable {
      * resets the connection. A heartbeat timeout (a silent peer, or a partition) is not one.
      */
     boolean endedWithoutGoodbye(CloseReason reason) {
-        return reason == CloseReason.PEER_CLOSED && !goodbyeRead || reason == CloseReason.IO_ERROR;
+        return !goodbyeRead && (reason == CloseReason.PEER_CLOSED || reason == CloseReason.IO_ERROR);
     }
 
     /**

@@ -432,10 +432,11 @@ public final class Engine {
         return all;
     }
 
-    /** See {@link io.etherware.services.network.NetworkMessenger#leftWithoutGoodbye}. */
-    public boolean leftWithoutGoodbye(String peerId, long forNs) {
+    /** See {@link io.etherware.services.network.NetworkMessenger#goneWithoutGoodbye}: how long ago, in ns, or -1. */
+    public long goneWithoutGoodbyeNs(String peerId) {
         Peer peer = peers.get(peerId);
-        return peer != null && peer.leftWithoutGoodbye(NetworkContext.nowNs(), forNs);
+        long since = peer == null ? -1 : peer.goneSinceNs();
+        return since < 0 ? -1 : Math.max(0, NetworkContext.nowNs() - since);
     }
 
     public Optional<PeerStatus> peerStatus(String peerId) {

@@ -25,10 +25,13 @@ final class Peer {
     private long announceVersion = -1;
     private boolean retired;
     /**
-     * Since when the node has had no connection, its last one having ended without a goodbye
-     * ({@link Connection#endedWithoutGoodbye}); -1 while it has one, or if it said goodbye.
+     * When the last active connection of the node's incarnation {@link #silentIncarnation} ended
+     * without a goodbye ({@link Connection#endedWithoutGoodbye}); -1 if it said goodbye, or that
+     * incarnation connected again. A later incarnation's connection leaves it: the process that
+     * left is gone for good. Both guarded by this; read lock-free as a pair by {@link #goneSinceNs}.
      */
     private volatile long silentSinceNs = -1;
+    private volatile long silentIncarnation;
 
     Peer(String nodeId, NetworkContext context) {
         this.nodeId = nodeId;
@@ -80,25 +83,36 @@ final class Peer {
     }
 
     /** An active connection of this node closed at {@code nowNs}; {@code withoutGoodbye}: see {@link #silentSinceNs}. */
-    void connectionEnded(long nowNs, boolean withoutGoodbye) {
-        silentSinceNs = withoutGoodbye ? nowNs : -1;
+    synchronized void connectionEnded(long nowNs, boolean withoutGoodbye) {
+        if (withoutGoodbye) {
+            silentSinceNs = nowNs;
+            silentIncarnation = incarnation;
+        } else if (silentIncarnation == incarnation) {
+            silentSinceNs = -1;
+        }
     }
 
     /**
-     * Whether the node's last connection ended without a goodbye at least {@code forNs} before
-     * {@code nowNs} and no lane has connected since: its process most likely exited.
+     * When the node's process left without a goodbye, if it did: its last connection ended so and
+     * no lane of the same incarnation has connected since (one of a later incarnation may have:
+     * it restarted). -1 otherwise.
      */
-    boolean leftWithoutGoodbye(long nowNs, long forNs) {
-        long since = silentSinceNs;
-        if (since < 0 || nowNs - since < forNs) {
-            return false;
+    long goneSinceNs() {
+        long since;
+        long ofIncarnation;
+        synchronized (this) {
+            since = silentSinceNs;
+            ofIncarnation = silentIncarnation;
+            if (since < 0 || ofIncarnation != incarnation) {
+                return since;
+            }
         }
         for (Link link : links) {
             if (link.isConnected()) {
-                return false;
+                return -1;
             }
         }
-        return silentSinceNs == since;
+        return since;
     }
 
     /** The connection of lane 0, the one that carries the time exchange, or null. */
@@ -118,7 +132,9 @@ final class Peer {
         LaneActivation activation = links[candidate.lane()].activate(candidate, theirs, announceBody);
         boolean restarted = false;
         if (activation.accepted()) {
-            silentSinceNs = -1;
+            if (silentIncarnation == hello.incarnation()) {
+                silentSinceNs = -1; // the same process came back: it had not left
+            }
             restarted = incarnation != 0 && incarnation != hello.incarnation();
             if (incarnation != hello.incarnation()) {
                 incarnation = hello.incarnation();
