@@ -32,9 +32,10 @@ import org.slf4j.LoggerFactory;
  * {@link Phase#INSTALL} restores the shipped state into it and registers it <em>held</em> under the
  * migration's arrival profile ({@link ComponentHost#addHeld}), {@link Phase#HANDOVER} admits it under its
  * own profile and releases it ({@link ComponentHost#admit}) once the source has forwarded the messages it
- * held. A component installed whose source left without a goodbye (its process ended) and stayed
- * away for a migration step's time is taken over: admitted with what was forwarded, since a dead
- * source resumes nothing. One installed but otherwise never handed over within
+ * held. A component installed whose source's process left without a goodbye before the source
+ * could have resumed it (its INSTALL step failing), and stayed away for a migration step's time, is
+ * taken over: admitted with what was forwarded, since that source resumed nothing. One installed
+ * but otherwise never handed over within
  * {@link ManagementConfig#handoverWaitNs()} is removed again: its source has resumed it by then.
  * An instance prepared but never installed is discarded after
  * {@code settleWait + 2 × migrationStepTimeout + handoverWait}: by then its source has sent the
