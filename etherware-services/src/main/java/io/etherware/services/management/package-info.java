@@ -133,9 +133,11 @@
  * reconnects, with the INSTALL's answer lost.
  *
  * <p>Known limit: a target that dies after the relocation takes the component with it, since its
- * state and the messages forwarded to it lived only there. Closing it needs the source to keep the
- * snapshot and what it forwarded until the hand-over is confirmed, and to resume from them when
- * the target left without a goodbye.
+ * state and the messages forwarded to it lived only there. The source cannot simply resume from
+ * its snapshot: once it sent the HANDOVER it cannot tell whether the target admitted the component
+ * and handled messages before it died, and those would be handled twice. Closing it needs the
+ * target to admit only on the source's word after the HANDOVER (one more trip in the gap), and the
+ * source to keep the snapshot and what it forwarded until then.
  *
  * <h3>Why nothing is lost, duplicated or reordered</h3>
  * Every message for the component is in exactly one place: handled at the source, kept there,
