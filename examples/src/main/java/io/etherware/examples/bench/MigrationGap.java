@@ -102,9 +102,12 @@ final class MigrationGap implements GapMeasurement {
             for (int i = -warmup; i < repetitions; i++) {
                 int from = Math.floorMod(i, 2);
                 MigrationResult result = migrateWhileChained(a, nodes[from], nodes[1 - from]);
-                if (i < 0 && result.gapNs() >= 0) {
+                if (result.gapNs() < 0) {
+                    continue; // no first handling seen: no gap to count
+                }
+                if (i < 0) {
                     coldNs[cold++] = result.gapNs();
-                } else if (i >= 0 && result.gapNs() >= 0) {
+                } else {
                     installNs[measured] = result.transferNs();
                     relocateNs[measured] = result.relocateNs();
                     handoverNs[measured] = result.gapNs() - result.transferNs() - result.relocateNs();

@@ -222,23 +222,16 @@ public final class KernelCore implements ComponentHost, JobRunner {
     @Override
     public CompletableFuture<Void> holdAsync(Profile profile) {
         LocalShell shell = shells.local(profile);
-        try {
-            shell.requireAdmitted("hold");
-        } catch (IllegalStateException e) {
-            return CompletableFuture.failedFuture(e);
-        }
-        return reconfiguration.holdAsync(shell);
+        IllegalStateException arriving = shell.stillArriving("hold");
+        return arriving != null ? CompletableFuture.failedFuture(arriving) : reconfiguration.holdAsync(shell);
     }
 
     @Override
     public CompletableFuture<Void> holdAsync(Profile profile, Duration settleWait) {
         LocalShell shell = shells.local(profile);
-        try {
-            shell.requireAdmitted("hold");
-        } catch (IllegalStateException e) {
-            return CompletableFuture.failedFuture(e);
-        }
-        return reconfiguration.holdAsync(shell, settleWait);
+        IllegalStateException arriving = shell.stillArriving("hold");
+        return arriving != null ? CompletableFuture.failedFuture(arriving)
+                : reconfiguration.holdAsync(shell, settleWait);
     }
 
     @Override
@@ -385,7 +378,10 @@ public final class KernelCore implements ComponentHost, JobRunner {
         if (!shell.profile().equals(profile)) {
             throw new IllegalArgumentException("relocate needs the exact profile '" + shell.profile() + "', not a query");
         }
-        shell.requireAdmitted("relocate");
+        IllegalStateException arriving = shell.stillArriving("relocate");
+        if (arriving != null) {
+            throw arriving;
+        }
         return reconfiguration.relocateAsync(shell, route, () -> shells.detach(shell))
                 .thenRun(() -> shells.retire(shell));
     }

@@ -263,17 +263,15 @@ public final class LocalShell implements Shell {
     }
 
     /**
-     * Refuses to move or hold for a move a component that is still arriving by migration: the
-     * messages its source forwards would come in after it left, behind later ones.
+     * Why the component may not be held or moved yet, or null: one still arriving by migration
+     * would leave the messages its source forwards to come in after it left, behind later ones.
      *
-     * @throws IllegalStateException if it arrived by migration and is not admitted yet
+     * @param what the refused operation, for the message
      */
-    void requireAdmitted(String what) {
+    IllegalStateException stillArriving(String what) {
         ArrivalPen arrived = pen;
-        if (arrived != null && !arrived.isAdmitted()) {
-            throw new IllegalStateException("'" + name + "' is still arriving by migration (not yet handed over here);"
-                    + " " + what + " it once it runs here");
-        }
+        return arrived == null || arrived.isAdmitted() ? null : new IllegalStateException("'" + name
+                + "' is still arriving by migration (not yet handed over here); " + what + " it once it runs here");
     }
 
     /** For a job about to be made: whether it is penned (see {@link ArrivalPen#pens}). */
