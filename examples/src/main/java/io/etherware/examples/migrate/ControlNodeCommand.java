@@ -1,5 +1,6 @@
 package io.etherware.examples.migrate;
 
+import io.etherware.core.kernel.DeliveryWarmUp;
 import io.etherware.core.kernel.EtherwareNode;
 import io.etherware.core.message.Profile;
 import io.etherware.examples.scenario.ControlListeners;
@@ -90,7 +91,7 @@ public final class ControlNodeCommand implements Callable<Integer> {
                         .listen(new InetSocketAddress("127.0.0.1", 0)).peer(plant).build());
                 ControlListeners.Registration registration = ControlListeners.register(listener,
                         CycleReport.forwarder(node))) {
-            WarmUp.deliveries(node);
+            DeliveryWarmUp.run(node);
             // Node 1 asks this node to move the controller to it.
             ManagementService.install(node, management, net);
             node.add(PendulumController.DEFAULT_PROFILE,

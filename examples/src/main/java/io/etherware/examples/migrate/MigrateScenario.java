@@ -1,5 +1,6 @@
 package io.etherware.examples.migrate;
 
+import io.etherware.core.kernel.DeliveryWarmUp;
 import io.etherware.core.kernel.Endpoint;
 import io.etherware.core.message.Criticality;
 import io.etherware.core.time.NodeClock;
@@ -123,7 +124,7 @@ public final class MigrateScenario {
             rig.node().add(CycleReport.RECORDER, CycleReport.recorder(rig.node(), remote));
             rig.node().add(Requester.PROFILE, Requester::new);
             rig.node().start();
-            WarmUp.deliveries(rig.node());
+            DeliveryWarmUp.run(rig.node());
             try (NetworkMessenger net = NetworkMessenger.start(rig.node(), NetworkConfig.builder()
                     .codec(WarmUp.warmedCodec(rig.node())).listen(new InetSocketAddress("127.0.0.1", 0))
                     .build())) {

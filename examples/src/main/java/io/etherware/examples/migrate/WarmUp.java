@@ -1,7 +1,6 @@
 package io.etherware.examples.migrate;
 
 import io.etherware.core.codec.MessageCodec;
-import io.etherware.core.kernel.EtherwareNode;
 import io.etherware.core.kernel.Kernel;
 import io.etherware.core.message.Contents;
 import io.etherware.core.message.Criticality;
@@ -22,9 +21,6 @@ import io.etherware.pendulum.components.SetTorque;
 import io.etherware.pendulum.control.GainSet;
 import io.etherware.pendulum.plant.PendulumParameters;
 import java.util.List;
-import java.util.concurrent.ExecutionException;
-import java.util.concurrent.TimeUnit;
-import java.util.concurrent.TimeoutException;
 
 /**
  * Warms a JVM of the migration scenario up before the pendulum starts, so that the first control
@@ -42,43 +38,7 @@ public final class WarmUp {
     /** A profile only the warm-up uses: the spare controller that the scenario migrates once first. */
     public static final Profile REHEARSAL = Profile.of("controller", "pendulum", "rehearsal");
 
-    /** Request rounds per criticality through the kernel: the first loads its classes, the rest start its JIT. */
-    private static final int DELIVERY_ROUNDS = 200;
-    private static final long DELIVERY_TIMEOUT_NS = 10_000_000_000L;
-
     private WarmUp() {
-    }
-
-    /**
-     * Runs requests and their replies through the node's kernel, at every criticality, one at a
-     * time, to a throwaway echo component that is removed afterwards; call it once the node has
-     * started and before the run's real-time part. The first local delivery of a JVM loads the
-     * kernel's delivery classes; on the network's real-time reader thread at the same moment as
-     * another real-time thread's first class loads, the two were seen to spin inside the JVM at
-     * full CPU on both cores for 950 ms (until the kernel's real-time throttling let ordinary
-     * threads run), and the pendulum fell.
-     *
-     * @throws IllegalStateException if a round trip fails or takes over 10 s
-     */
-    public static void deliveries(EtherwareNode node) {
-        Profile echo = Profile.of("warm-up", "node", node.nodeId());
-        node.add(echo, () -> (message, context) -> context.reply(message, message.contents()));
-        try {
-            for (int round = 0; round < DELIVERY_ROUNDS; round++) {
-                for (Criticality criticality : Criticality.values()) {
-                    node.request(echo, new ReadAngles(round), QoS.of(criticality), DELIVERY_TIMEOUT_NS)
-                            .get(DELIVERY_TIMEOUT_NS, TimeUnit.NANOSECONDS);
-                }
-            }
-        } catch (ExecutionException | TimeoutException e) {
-            throw new IllegalStateException("the warm-up round trip through node '" + node.nodeId() + "' failed: " + e,
-                    e);
-        } catch (InterruptedException e) {
-            Thread.currentThread().interrupt();
-            throw new IllegalStateException("interrupted warming up node '" + node.nodeId() + "'", e);
-        } finally {
-            node.remove(echo);
-        }
     }
 
     /**

@@ -1,5 +1,6 @@
 package io.etherware.examples.upgrade;
 
+import io.etherware.core.kernel.DeliveryWarmUp;
 import io.etherware.core.message.Criticality;
 import io.etherware.core.time.NodeClock;
 import io.etherware.examples.migrate.ControlNodeCommand;
@@ -168,7 +169,7 @@ public final class UpgradeScenario {
             // registers their contents.
             Management.registerContents(rig.node().contentsTypes());
             rig.node().start();
-            WarmUp.deliveries(rig.node());
+            DeliveryWarmUp.run(rig.node());
             try (NetworkMessenger net = NetworkMessenger.start(rig.node(), NetworkConfig.builder()
                     .codec(WarmUp.warmedCodec(rig.node())).listen(new InetSocketAddress("127.0.0.1", 0))
                     .build())) {
