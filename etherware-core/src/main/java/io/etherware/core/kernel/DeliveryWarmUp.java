@@ -32,6 +32,7 @@ public final class DeliveryWarmUp {
     /**
      * Warms {@code node}'s delivery path up (see the class documentation).
      *
+     * @param node a started node
      * @throws IllegalStateException if the node does not run, or a round trip fails or takes over 10 s
      */
     public static void run(EtherwareNode node) {
