@@ -157,6 +157,24 @@ public interface ComponentHost extends Kernel {
     CompletableFuture<Void> relocateAsync(Profile profile, RemoteRoute route);
 
     /**
+     * Brings back, from {@code state}, a component this node relocated ({@link #relocateAsync})
+     * whose new node died before it took the component over: a new instance from the component's
+     * factory (the one its last upgrade installed), restored to {@code state}, registered under its
+     * profile again (displacing the relocation's route) and started. Messages that went along the
+     * route meanwhile are not brought back.
+     *
+     * @param relocated the shell of the relocated component, as it was before the relocation
+     * @param state     the state to resume from, as {@link #snapshotAsync} took it before the move
+     * @return the new shell; if its {@code onStart} threw it is FAILED
+     * @throws IllegalArgumentException if {@code relocated} is not a component this node relocated
+     * @throws IllegalStateException    if its relocation has not switched its profile to the route
+     *                                  yet, or the node does not run
+     * @throws Exception                what the new instance's {@code restore} threw; nothing was
+     *                                  registered then
+     */
+    Shell reinstate(Shell relocated, ComponentState state) throws Exception;
+
+    /**
      * Adds a component that arrives by migration, <em>held</em>: registered under its
      * {@code profile} (displacing the route to its source) and under {@code arrival}, a profile of
      * its own to which the source forwards the messages it held and those that reach it until it

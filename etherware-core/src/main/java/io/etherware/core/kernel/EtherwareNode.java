@@ -456,6 +456,11 @@ public final class EtherwareNode implements ComponentHost, AutoCloseable {
     }
 
     @Override
+    public Shell reinstate(Shell relocated, ComponentState state) throws Exception {
+        return core.reinstate(relocated, state);
+    }
+
+    @Override
     public ContentsTypes contentsTypes() {
         return core.contentsTypes();
     }

@@ -272,6 +272,40 @@ class ManagementHooksTest {
     }
 
     @Test
+    void shouldReinstateARelocatedComponentFromItsStateUnderItsProfile() throws Exception {
+        var log = new CopyOnWriteArrayList<String>();
+        var forwarded = new CopyOnWriteArrayList<Long>();
+        RemoteRoute route = message -> forwarded.add(message.contentsAs(Num.class).value());
+        try (var node = EtherwareNode.builder().nodeId("reinstate").build()) {
+            Shell notMoved = node.add(MARKER, () -> (message, context) -> { });
+            node.add(TARGET, () -> new CounterV1(log));
+            node.start();
+            node.send(TARGET, new Num(0));
+            node.send(TARGET, new Num(1));
+            Await.until("two handled", () -> log.size() == 2);
+            Shell moved = node.shell(TARGET);
+            node.hold(TARGET);
+            ComponentState state = node.snapshotAsync(TARGET).get(30, TimeUnit.SECONDS);
+            node.relocateAsync(TARGET, route).get(30, TimeUnit.SECONDS);
+            node.send(TARGET, new Num(2)); // to the new node, which dies with it
+            assertEquals(List.of(2L), forwarded);
+
+            Shell back = node.reinstate(moved, state);
+            assertInstanceOf(Endpoint.Local.class, node.registry().resolve(TARGET), "local again");
+            assertEquals(Shell.State.RUNNING, back.state());
+            node.send(TARGET, new Num(3));
+            Await.until("handled here again", () -> log.size() == 3);
+            assertEquals(List.of("v1:1", "v1:2", "v1:3"), log, "counting on from the state");
+            assertEquals(List.of(2L), forwarded, "nothing more through the route");
+
+            var notRelocated = assertThrows(IllegalArgumentException.class, () -> node.reinstate(notMoved, state));
+            assertTrue(notRelocated.getMessage().contains("not a component that node 'reinstate' relocated"),
+                    notRelocated.getMessage());
+            assertThrows(IllegalArgumentException.class, () -> node.reinstate(back, state), "it was not relocated");
+        }
+    }
+
+    @Test
     void shouldStillDeliverAForwardedMessageThatComesAfterAnAdmissionThatStoppedWaitingForIt() throws Exception {
         var handled = new CopyOnWriteArrayList<Long>();
         Profile arrival = Profile.of("etherware.arrival", "id", "late");

@@ -106,6 +106,15 @@ final class ComponentLogic {
         this.logic = newLogic(factory);
     }
 
+    /** What makes new instances: the one given at the start, or the last swap's. */
+    Supplier<? extends Component> factory() {
+        return factory;
+    }
+
+    SupervisionPolicy policy() {
+        return policy;
+    }
+
     State state() {
         return lifecycle;
     }

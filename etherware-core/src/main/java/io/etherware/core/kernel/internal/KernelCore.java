@@ -31,6 +31,7 @@ import java.util.List;
 import java.util.Objects;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.atomic.AtomicLong;
+import java.util.concurrent.atomic.AtomicReference;
 import java.util.function.LongConsumer;
 import java.util.function.Supplier;
 import org.slf4j.Logger;
@@ -384,6 +385,27 @@ public final class KernelCore implements ComponentHost, JobRunner {
         }
         return reconfiguration.relocateAsync(shell, route, () -> shells.detach(shell))
                 .thenRun(() -> shells.retire(shell));
+    }
+
+    @Override
+    public Shell reinstate(Shell relocated, ComponentState state) throws Exception {
+        Objects.requireNonNull(state, "state");
+        if (!(relocated instanceof LocalShell old) || !old.switchedBy(this)) {
+            throw new IllegalArgumentException("'" + (relocated == null ? null : relocated.profile()) + "' is not a"
+                    + " component that node '" + nodeId + "' relocated (or its relocation has not switched yet)");
+        }
+        Supplier<? extends Component> factory = old.factory();
+        Component first = Objects.requireNonNull(factory.get(), "the factory of '" + old.profile() + "' returned null");
+        first.restore(state);
+        var unused = new AtomicReference<Component>(first);
+        if (this.state != NodeState.RUNNING) {
+            throw new IllegalStateException("node '" + nodeId + "' is " + this.state + "; cannot reinstate '"
+                    + old.profile() + "'");
+        }
+        return add(old.profile(), () -> {
+            Component restored = unused.getAndSet(null);
+            return restored != null ? restored : factory.get();
+        }, old.policy());
     }
 
     @Override

@@ -147,6 +147,20 @@ public final class LocalShell implements Shell {
         return removed;
     }
 
+    /** Whether a relocation of this component by {@code host} has switched its profile to the route. */
+    boolean switchedBy(KernelCore host) {
+        return kernel == host && forwardTo != null && ((int) QUEUED.getVolatile(this) & DIRECT) != 0;
+    }
+
+    /** What makes the component's instances (for {@link KernelCore#reinstate}). */
+    Supplier<? extends Component> factory() {
+        return logic.factory();
+    }
+
+    SupervisionPolicy policy() {
+        return logic.policy();
+    }
+
     // ---------------------------------------------------------------- the gate
 
     /** See {@link ComponentGate#enterOrPark}. */
