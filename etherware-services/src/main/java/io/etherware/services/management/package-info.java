@@ -100,9 +100,16 @@
  *   <tr><td>target</td><td>prepare, quiesce, transfer (before the relocation)</td>
  *       <td>the source's step fails, the hold is released: the component runs at the source with
  *       every kept message (tested with a second JVM killed during the transfer)</td></tr>
- *   <tr><td>target</td><td>hand-over, or after it</td>
- *       <td>the component is gone: its state and the messages forwarded to it lived only
- *       there</td></tr>
+ *   <tr><td>target</td><td>relocation, hand-over (before its answer reached the source)</td>
+ *       <td>the source resumes the component from the state it handed over
+ *       ({@link io.etherware.core.kernel.ComponentHost#reinstate}) once the target has left without
+ *       a goodbye after the INSTALL and stayed away for {@code migrationStepTimeout} (the take-over's
+ *       condition, the other way round); the migration fails with {@code TARGET_UNREACHABLE}
+ *       saying so. The messages forwarded or routed to the target die with it, and so does what
+ *       it handled of them before it died (tested with the target's JVM killed while the source
+ *       waits for the hand-over's answer)</td></tr>
+ *   <tr><td>target</td><td>after the hand-over was answered</td>
+ *       <td>the component is gone with its node, as it would be without a migration</td></tr>
  *   <tr><td>source</td><td>prepare, quiesce, its snapshot (before the INSTALL left)</td>
  *       <td>the component is gone with its node, as without a migration. The target keeps
  *       nothing: an instance prepared for it is discarded after {@code settleWait + 2 ×
@@ -132,12 +139,21 @@
  * instances would need a live source's connection to be reset and then cut off before it
  * reconnects, with the INSTALL's answer lost.
  *
- * <p>Known limit: a target that dies after the relocation takes the component with it, since its
- * state and the messages forwarded to it lived only there. The source cannot simply resume from
- * its snapshot: once it sent the HANDOVER it cannot tell whether the target admitted the component
- * and handled messages before it died, and those would be handled twice. Closing it needs the
- * target to admit only on the source's word after the HANDOVER (one more trip in the gap), and the
- * source to keep the snapshot and what it forwarded until then.
+ * <p>Why the source's resumption runs one instance, and what it gives up: the target answers the
+ * HANDOVER once the component's first message there has been handled (or after {@code
+ * firstMessageWait} without one), so a target that died before the answer reached the source had
+ * run the component at most for that message and the few after it within the answer's trip. The
+ * source resumes from the state it handed over, so the effects of those on the state are lost
+ * (their replies may have gone out); nothing is handled twice, since the source keeps no copy of
+ * what it forwarded. A target that stays connected but never answers (a partition: its connections
+ * end by heartbeat timeout, not taken for leaving) keeps the component; the source logs that the
+ * hand-over was not confirmed. Keeping even those few would need the target to admit only on the
+ * source's word after the HANDOVER (one more trip in the gap).
+ *
+ * <p>A relocation whose switch waits for messages of the component queued at its dispatcher behind
+ * another component's long handling is waited for past the step timeout, as long as the target
+ * keeps its copy ({@code handoverWait} after the INSTALL, less a step for the hand-over to reach
+ * it); only a handling longer than that loses the component (the migration fails saying why).
  *
  * <h3>Why nothing is lost, duplicated or reordered</h3>
  * Every message for the component is in exactly one place: handled at the source, kept there,

@@ -36,7 +36,8 @@ import org.junit.jupiter.params.provider.CsvSource;
  * Migration between two JVMs on loopback: the second JVM ({@link MigrationPeer}) runs on the same
  * class path. A stateful counter under a steady stream of sequence-numbered messages moves there
  * and back with nothing lost, duplicated or reordered; when the target JVM is killed inside the
- * PREPARE or the INSTALL step of a migration, the counter resumes at the source with nothing lost;
+ * PREPARE or the INSTALL step of a migration, the counter resumes at the source with nothing lost,
+ * and when it is killed after the relocation, from the state it was handed;
  * when the source JVM is killed inside the PREPARE step or the snapshot, the target gives the
  * migration up and keeps nothing of it; when it is killed after sending the INSTALL, the target runs
  * the counter from the state handed over.
@@ -163,6 +164,51 @@ class MigrationAcrossJvmsIT {
                 stream.stopAndAssertExactlyOnceInOrder();
                 assertEquals(List.of("jvm-a"), stream.handlers(), "every message handled at the source");
                 assertInstanceOf(Endpoint.Local.class, a.node.registry().resolve(COUNTER));
+            } finally {
+                b.destroyForcibly();
+            }
+        }
+    }
+
+    /**
+     * The target JVM is killed (SIGKILL) after the relocation, while this node waits for the
+     * answer to the hand-over (the counter, sent nothing, is answered for only after the target's
+     * first-message wait of 1 s): the target had the counter's state but ran nothing of it, so the
+     * counter resumes here from that state, under its profile, counting on; the migration fails
+     * saying so.
+     */
+    @Test
+    void shouldResumeAtTheSourceFromTheStateHandedOverWhenTheTargetJvmIsKilledAfterTheRelocation()
+            throws Exception {
+        try (var a = sourceWithCounter()) {
+            List<Counted> reports = sinkAt(a);
+            for (long i = 0; i < 5; i++) {
+                a.node.send(COUNTER, new Seq(i), SeqStream.QOS);
+            }
+            Await.until("five handled here", () -> reports.size() == 5);
+            Shell before = a.node.shell(COUNTER);
+            Process b = startPeer(a, "jvm-b");
+            try {
+                var move = Management.migrate(a.node, "jvm-a", COUNTER, "jvm-b", Duration.ofSeconds(30));
+                Await.until("relocated to B", () -> move.isDone()
+                        || resolveOrNull(a, COUNTER) instanceof Endpoint.Remote);
+                assertTrue(!move.isDone(), "the hand-over was not answered yet: " + move);
+                b.destroyForcibly();
+                assertTrue(b.waitFor(30, TimeUnit.SECONDS), "the target JVM is gone");
+
+                var error = assertThrows(ExecutionException.class, () -> move.get(60, TimeUnit.SECONDS));
+                var failure = assertInstanceOf(ManagementException.class, error.getCause()).failure();
+                assertEquals(ManagementFailure.Reason.TARGET_UNREACHABLE, failure.reason(), failure.error());
+                assertTrue(failure.error().contains("resumed at 'jvm-a' from the state it handed over"),
+                        failure.error());
+                assertInstanceOf(Endpoint.Local.class, a.node.registry().resolve(COUNTER), "it runs here again");
+                Shell after = a.node.shell(COUNTER);
+                assertTrue(after != before, "a new instance, from the state handed over");
+                assertEquals(Shell.State.RUNNING, after.state());
+                a.node.send(COUNTER, new Seq(5), SeqStream.QOS);
+                Await.until("the next one handled here", () -> reports.size() == 6);
+                assertEquals(new Counted(5, 6), reports.getLast(), "counting on from the state handed over");
+                assertEquals(List.of(), arrivalProfiles(a));
             } finally {
                 b.destroyForcibly();
             }

@@ -7,24 +7,31 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import example.counter.Counted;
 import example.counter.ReportingCounter;
-import io.etherware.core.message.Criticality;
-import io.etherware.rt.platform.ThreadPolicy;
-import io.etherware.services.notifier.Notifier;
-import io.etherware.services.notifier.NotifierConfig;
-import io.etherware.services.notifier.Subscription;
+import example.counter.Seq;
 import io.etherware.core.kernel.Endpoint;
+import io.etherware.core.message.Criticality;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageId;
 import io.etherware.core.message.Origin;
 import io.etherware.core.message.Profile;
+import io.etherware.core.scheduler.Scheduler;
+import io.etherware.rt.platform.ThreadPolicy;
+import io.etherware.rt.scheduling.RealtimeScheduler;
+import io.etherware.rt.scheduling.RealtimeSchedulerConfig;
+import io.etherware.rt.scheduling.ThreadSchedulingRule;
+import io.etherware.services.notifier.Notifier;
+import io.etherware.services.notifier.NotifierConfig;
+import io.etherware.services.notifier.Subscription;
 import io.etherware.testkit.Await;
 import java.time.Duration;
 import java.util.List;
 import java.util.Set;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.CopyOnWriteArrayList;
+import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.ExecutionException;
 import java.util.concurrent.TimeUnit;
+import java.util.function.Supplier;
 import org.junit.jupiter.api.Test;
 
 /**
@@ -77,6 +84,57 @@ class MigrationIT {
             assertEquals(List.of("mig-a", "mig-b", "mig-a"), stream.handlers(), "handled at A, then B, then A");
             assertEquals(1, a.management.migratedCount());
             assertEquals(1, b.management.migratedCount());
+            assertEquals(0, a.node.stats().undeliverable() + b.node.stats().undeliverable());
+        }
+    }
+
+    /**
+     * When the migration relocates the counter, five of its messages wait at its dispatcher
+     * behind another component's handling of 1.2 s, longer than a migration step (0.5 s here): the
+     * relocation's switch waits for them, and the source waits for the switch as long as the
+     * target keeps its copy (the hand-over wait, 4 s, less a step), so the counter arrives with the
+     * five, in order, nothing lost. The HIGH management requests have a dispatcher of their own.
+     */
+    @Test
+    void shouldWaitForARelocationHeldUpByAnotherComponentsLongHandlingWithNothingLost() throws Exception {
+        Supplier<Scheduler> fourDispatchers = () -> new RealtimeScheduler(RealtimeSchedulerConfig.builder()
+                .threadSchedulingRule(ThreadSchedulingRule.nonRealtime(4)).build());
+        ManagementConfig config = MigrationNode.config().migrationStepTimeout(Duration.ofMillis(500))
+                .handoverWait(Duration.ofSeconds(4)).build();
+        Profile blocker = Profile.of("blocker");
+        try (var a = MigrationNode.start("mig-a", fourDispatchers, config);
+             var b = MigrationNode.start("mig-b", fourDispatchers, config, a.address())) {
+            var reports = new CopyOnWriteArrayList<Counted>();
+            a.node.add(ReportingCounter.SINK, () -> (message, context) -> reports.add((Counted) message.contents()));
+            a.node.add(COUNTER, ReportingCounter::new);
+            var blocking = new CountDownLatch(1);
+            a.node.add(blocker, () -> (message, context) -> {
+                blocking.countDown();
+                try {
+                    Thread.sleep(1200);
+                } catch (InterruptedException e) {
+                    Thread.currentThread().interrupt();
+                }
+            });
+            a.awaitManagementOf("mig-b");
+            b.awaitManagementOf("mig-a");
+            Await.until("B routes the sink", () -> b.node.registry().profiles().contains(ReportingCounter.SINK));
+
+            a.node.send(blocker, new Seq(-1), SeqStream.QOS);
+            assertTrue(blocking.await(30, TimeUnit.SECONDS), "the long handling began");
+            for (long i = 0; i < 5; i++) {
+                a.node.send(COUNTER, new Seq(i), SeqStream.QOS); // queued behind it, same dispatcher
+            }
+            MigrationResult moved = Management.migrate(a.node, "mig-a", COUNTER, "mig-b").get(30, TimeUnit.SECONDS);
+
+            assertEquals("mig-b", moved.toNode());
+            assertTrue(moved.relocateNs() > TimeUnit.MILLISECONDS.toNanos(500), "the switch took more than a step: "
+                    + moved);
+            assertHostedBy(b, a);
+            Await.until("the five handled at B", () -> reports.size() == 5);
+            assertEquals(List.of(new Counted(0, 1), new Counted(1, 2), new Counted(2, 3), new Counted(3, 4),
+                    new Counted(4, 5)), reports, "each once, in order");
+            assertEquals(0, b.management.abandonedInCount(), "the target kept its copy");
             assertEquals(0, a.node.stats().undeliverable() + b.node.stats().undeliverable());
         }
     }

@@ -29,8 +29,10 @@ import org.slf4j.LoggerFactory;
 /**
  * The source side of a migration: prepare at the target, hold at a message boundary, snapshot,
  * install at the target, relocate (forward the held messages), hand over. Any failure before the
- * relocation releases the hold, so the component resumes here with nothing lost; see the package
- * documentation of {@code io.etherware.services.management} for the ordering argument.
+ * relocation releases the hold, so the component resumes here with nothing lost; a target that
+ * dies after the relocation, before it confirmed the hand-over, makes the component resume here
+ * from the state it was handed ({@link ComponentHost#reinstate}). See the package documentation of
+ * {@code io.etherware.services.management} for the ordering argument.
  *
  * <p>Threading: {@link #migrate} blocks for the target's answers, so it runs on the management
  * service's worker thread, never on a dispatcher; one migration at a time per service. From the
@@ -45,6 +47,8 @@ public final class MigrationSource {
     public static final String ARRIVAL_ROLE = "etherware.arrival";
     /** Beyond a request's own timeout, for the kernel's timer to fire it. */
     private static final long GRACE_NS = TimeUnit.SECONDS.toNanos(1);
+    /** How often a target that left during a hand-over is looked at. */
+    private static final long TARGET_WATCH_NS = TimeUnit.MILLISECONDS.toNanos(100);
 
     private final ComponentHost kernel;
     private final ManagementConfig config;
@@ -95,7 +99,7 @@ public final class MigrationSource {
                 request.configuration(), null, 0, stepNs), stepNs);
         long quiesceStartNs = kernel.clock().nanoTime();
         try (var raised = GapPriority.of(kernel, Management.profileOf(kernel.nodeId()), qos).raise()) {
-            return moveHeld(profile, toNode, className, arrival, receivedNs, prepareStartNs, quiesceStartNs);
+            return moveHeld(shell, toNode, className, arrival, receivedNs, prepareStartNs, quiesceStartNs);
         }
     }
 
@@ -103,8 +107,9 @@ public final class MigrationSource {
      * The migration gap, at the request's priority: holds the component here, ships its state,
      * relocates it and hands it over.
      */
-    private MigrationResult moveHeld(Profile profile, String toNode, String className, Profile arrival,
+    private MigrationResult moveHeld(Shell shell, String toNode, String className, Profile arrival,
                                      long receivedNs, long prepareStartNs, long quiesceStartNs) throws LoadFailure {
+        Profile profile = shell.profile();
         long stepNs = config.migrationStepTimeoutNs();
         // (ii) Quiesce at a message boundary where the component waits for no reply (the outcomes
         // of its requests reach it here, where their callbacks are): from now on its messages are
@@ -154,16 +159,13 @@ public final class MigrationSource {
         // The switch: the profile now routes to the target, the held messages go first (FIFO stream).
         var route = new ArrivalRoute(network.routeTo(toNode), arrival, profile);
         try {
-            kernel.relocateAsync(profile, route).get(stepNs, TimeUnit.NANOSECONDS);
-        } catch (ExecutionException | TimeoutException | InterruptedException e) {
-            // A concurrent re-registration of the profile gets here, and so does a relocation still
-            // waiting after a step for jobs of the component queued behind a long handling of
-            // another component on the same dispatcher. Known defect: the relocation has stopped
-            // the component here by then (the release cannot resume it) and goes on forwarding to
-            // the arrival profile, while the target gives up its copy after its hand-over wait, so
-            // the component is lost. Waiting for the switch, then sealing and handing over, would
-            // keep it; not done yet.
+            awaitSwitch(kernel.relocateAsync(profile, route), profile, toNode, installedNs);
+        } catch (ExecutionException | InterruptedException e) {
+            // The relocation failed (its profile was registered anew meanwhile, say).
             kernel.release(profile);
+            if (e instanceof InterruptedException) {
+                Thread.currentThread().interrupt();
+            }
             throw new LoadFailure(Reason.SERVICE_FAILED, "relocating '" + profile + "' to '" + toNode + "' failed: "
                     + e, e);
         }
@@ -183,6 +185,7 @@ public final class MigrationSource {
             firstEpochNs = done.firstHandlingEpochNs();
             implementation = done.implementation();
         } catch (LoadFailure e) {
+            resumeIfTargetLeft(shell, toNode, state, quiescedNs, e);
             log.warn("node {}: '{}' moved to '{}', but its hand-over was not confirmed: {}", kernel.nodeId(), profile,
                     toNode, e.getMessage());
         }
@@ -192,6 +195,93 @@ public final class MigrationSource {
                 state == null ? -1 : state.schemaVersion(), heldMessages, quiesceStartNs - prepareStartNs,
                 quiescedNs - quiesceStartNs, installedNs - quiescedNs, relocatedNs - installedNs, gapNs,
                 endNs - receivedNs);
+    }
+
+    /**
+     * Waits for a relocation's switch. The relocation begins at once (the component is held, so at
+     * a boundary): it stops the component here and forwards what the hold kept; the switch then
+     * waits for the component's jobs already queued at a dispatcher to be forwarded as they come
+     * up. Behind a long handling of another component on the same dispatcher that can take more
+     * than a step; releasing the hold could not resume the component then, so this waits on, as
+     * long as the target keeps its copy ({@link ManagementConfig#handoverWaitNs()} after the
+     * INSTALL), less a step for the hand-over to reach it.
+     *
+     * @throws LoadFailure if the switch did not come by then: the component is lost (it is stopped
+     *                     here, and the target gives its copy up)
+     */
+    private void awaitSwitch(CompletableFuture<Void> switched, Profile profile, String toNode, long installedNs)
+            throws ExecutionException, InterruptedException, LoadFailure {
+        long stepNs = config.migrationStepTimeoutNs();
+        try {
+            switched.get(stepNs, TimeUnit.NANOSECONDS);
+            return;
+        } catch (TimeoutException e) {
+            log.warn("node {}: the relocation of '{}' has not switched after {} ms: jobs of it wait behind a long"
+                    + " handling of another component on their dispatcher; waiting on", kernel.nodeId(), profile,
+                    TimeUnit.NANOSECONDS.toMillis(stepNs));
+        }
+        long moreNs = installedNs + config.handoverWaitNs() - stepNs - kernel.clock().nanoTime();
+        try {
+            switched.get(Math.max(0, moreNs), TimeUnit.NANOSECONDS);
+        } catch (TimeoutException e) {
+            String why = "the relocation of '" + profile + "' to '" + toNode + "' did not switch within "
+                    + TimeUnit.NANOSECONDS.toMillis(config.handoverWaitNs() - stepNs) + " ms of the INSTALL: jobs of"
+                    + " it waited behind a handling of another component on their dispatcher that ran longer (a"
+                    + " handler must not block); '" + profile + "' is stopped at '" + kernel.nodeId()
+                    + "' and its copy at '" + toNode + "' is given up after the hand-over wait: it is lost";
+            log.error("node {}: {}", kernel.nodeId(), why);
+            throw new LoadFailure(Reason.SERVICE_FAILED, why, e);
+        }
+    }
+
+    /**
+     * After a hand-over that was not confirmed: if the target's process left without a goodbye
+     * after the INSTALL was sent and stays away for a step's time (what makes a target take over
+     * from a source that died, {@code MigrationTarget}), it died before it could have run the
+     * component for long: the component resumes here from the state it handed over, and the
+     * migration fails saying so. Otherwise returns, and the component stays with the target (a
+     * target that only answered late runs it).
+     *
+     * @param sinceNs   before the INSTALL was sent: a departure before it was of another incarnation
+     * @param handOver  why the hand-over failed
+     * @throws LoadFailure if the component resumed here (or could not)
+     */
+    private void resumeIfTargetLeft(Shell relocated, String toNode, ComponentState state, long sinceNs,
+                                    LoadFailure handOver) throws LoadFailure {
+        Profile profile = relocated.profile();
+        long stepNs = config.migrationStepTimeoutNs();
+        long lookUntilNs = kernel.clock().nanoTime() + 2 * stepNs;
+        try {
+            while (true) {
+                long nowNs = kernel.clock().nanoTime();
+                long goneNs = network.goneWithoutGoodbye(toNode).map(Duration::toNanos).orElse(-1L);
+                if (goneNs >= 0 && nowNs - goneNs > sinceNs) {
+                    if (goneNs >= stepNs) {
+                        break;
+                    }
+                } else if (nowNs >= lookUntilNs) {
+                    return;
+                }
+                Thread.sleep(TimeUnit.NANOSECONDS.toMillis(TARGET_WATCH_NS));
+            }
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            return;
+        }
+        String why = handOver.getMessage() + "; node '" + toNode + "' left without a goodbye after the INSTALL and"
+                + " has not come back for " + TimeUnit.NANOSECONDS.toMillis(stepNs) + " ms";
+        try {
+            kernel.reinstate(relocated, state);
+        } catch (Exception e) {
+            log.error("node {}: '{}' could not resume from the state it handed over ({}): {}", kernel.nodeId(),
+                    profile, why, e.toString());
+            throw new LoadFailure(Reason.SERVICE_FAILED, why + "; resuming '" + profile + "' at '" + kernel.nodeId()
+                    + "' from the state it handed over failed: " + e, e);
+        }
+        log.warn("node {}: {}; '{}' resumed here from the state it handed over (what was sent to it since the"
+                + " relocation went to that node and is lost with it)", kernel.nodeId(), why, profile);
+        throw new LoadFailure(Reason.TARGET_UNREACHABLE, why + "; '" + profile + "' resumed at '" + kernel.nodeId()
+                + "' from the state it handed over", handOver);
     }
 
     /** Sends one step to the target's management service and waits for its answer. */
