@@ -158,17 +158,20 @@ public interface ComponentHost extends Kernel {
 
     /**
      * Brings back, from {@code state}, a component this node relocated ({@link #relocateAsync})
-     * whose new node died before it took the component over: a new instance from the component's
-     * factory (the one its last upgrade installed), restored to {@code state}, registered under its
-     * profile again (displacing the relocation's route) and started. Messages that went along the
-     * route meanwhile are not brought back.
+     * whose new node holds no copy that could run (it died before taking the component over, or
+     * gave it up): a new instance from the component's factory (the one its last upgrade
+     * installed), restored to {@code state}, registered under its profile again (displacing the
+     * relocation's route) and started. Once per relocation. The caller must know the other node's
+     * copy cannot run, or two instances would. Messages that went along the route meanwhile are not
+     * brought back.
      *
      * @param relocated the shell of the relocated component, as it was before the relocation
-     * @param state     the state to resume from, as {@link #snapshotAsync} took it before the move
+     * @param state     the state to resume from, as {@link #snapshotAsync} took it before the move;
+     *                  null for a component without state (nothing is restored)
      * @return the new shell; if its {@code onStart} threw it is FAILED
      * @throws IllegalArgumentException if {@code relocated} is not a component this node relocated
-     * @throws IllegalStateException    if its relocation has not switched its profile to the route
-     *                                  yet, or the node does not run
+     * @throws IllegalStateException    if its relocation has not pointed its profile at the route,
+     *                                  it was reinstated already, or the node does not run
      * @throws Exception                what the new instance's {@code restore} threw; nothing was
      *                                  registered then
      */

@@ -302,6 +302,26 @@ class ManagementHooksTest {
             assertTrue(notRelocated.getMessage().contains("not a component that node 'reinstate' relocated"),
                     notRelocated.getMessage());
             assertThrows(IllegalArgumentException.class, () -> node.reinstate(back, state), "it was not relocated");
+            var twice = assertThrows(IllegalStateException.class, () -> node.reinstate(moved, state));
+            assertTrue(twice.getMessage().contains("reinstated already"), twice.getMessage());
+        }
+    }
+
+    @Test
+    void shouldReinstateAStatelessRelocatedComponentWithoutRestoring() throws Exception {
+        var handled = new CopyOnWriteArrayList<Long>();
+        try (var node = EtherwareNode.builder().nodeId("reinstate-stateless").build()) {
+            node.add(TARGET, () -> (message, context) -> handled.add(message.contentsAs(Num.class).value()));
+            node.start();
+            Shell moved = node.shell(TARGET);
+            node.hold(TARGET);
+            assertEquals(null, node.snapshotAsync(TARGET).get(30, TimeUnit.SECONDS), "no state to ship");
+            node.relocateAsync(TARGET, message -> { }).get(30, TimeUnit.SECONDS);
+
+            node.reinstate(moved, null);
+            node.send(TARGET, new Num(7));
+            Await.until("handled here again", () -> handled.size() == 1);
+            assertEquals(List.of(7L), handled);
         }
     }
 

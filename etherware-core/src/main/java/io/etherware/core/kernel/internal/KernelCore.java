@@ -389,19 +389,27 @@ public final class KernelCore implements ComponentHost, JobRunner {
 
     @Override
     public Shell reinstate(Shell relocated, ComponentState state) throws Exception {
-        Objects.requireNonNull(state, "state");
-        if (!(relocated instanceof LocalShell old) || !old.switchedBy(this)) {
+        if (!(relocated instanceof LocalShell old) || !old.relocatedBy(this)) {
             throw new IllegalArgumentException("'" + (relocated == null ? null : relocated.profile()) + "' is not a"
-                    + " component that node '" + nodeId + "' relocated (or its relocation has not switched yet)");
+                    + " component that node '" + nodeId + "' relocated");
         }
-        Supplier<? extends Component> factory = old.factory();
-        Component first = Objects.requireNonNull(factory.get(), "the factory of '" + old.profile() + "' returned null");
-        first.restore(state);
-        var unused = new AtomicReference<Component>(first);
+        if (!old.hasSwitched()) {
+            throw new IllegalStateException("the relocation of '" + old.profile() + "' has not pointed its profile"
+                    + " at the route (yet)");
+        }
         if (this.state != NodeState.RUNNING) {
             throw new IllegalStateException("node '" + nodeId + "' is " + this.state + "; cannot reinstate '"
                     + old.profile() + "'");
         }
+        Supplier<? extends Component> factory = old.factory();
+        Component first = Objects.requireNonNull(factory.get(), "the factory of '" + old.profile() + "' returned null");
+        if (state != null) {
+            first.restore(state);
+        }
+        if (!old.claimReinstatement()) {
+            throw new IllegalStateException("'" + old.profile() + "' was reinstated already");
+        }
+        var unused = new AtomicReference<Component>(first);
         return add(old.profile(), () -> {
             Component restored = unused.getAndSet(null);
             return restored != null ? restored : factory.get();

@@ -75,6 +75,10 @@ public final class LocalShell implements Shell {
     /** Completes when a relocation has switched the profile to its route; owner or last job. */
     private CompletableFuture<Void> switched;
     private ProfileTable relocationRegistry;
+    /** Set once a relocation's switch has pointed the profile at its route. */
+    private volatile boolean switchedOver;
+    /** Set once {@link KernelCore#reinstate} brought the component back from a relocation. */
+    private final AtomicBoolean reinstated = new AtomicBoolean();
 
     /** The holds and swaps waiting for the component to be quiescent. */
     private final SettleQueue settling;
@@ -147,9 +151,19 @@ public final class LocalShell implements Shell {
         return removed;
     }
 
-    /** Whether a relocation of this component by {@code host} has switched its profile to the route. */
-    boolean switchedBy(KernelCore host) {
-        return kernel == host && forwardTo != null && ((int) QUEUED.getVolatile(this) & DIRECT) != 0;
+    /** Whether {@code host} relocated this component (the switch may be still to come). */
+    boolean relocatedBy(KernelCore host) {
+        return kernel == host && forwardTo != null;
+    }
+
+    /** Whether a relocation has pointed the profile at its route. */
+    boolean hasSwitched() {
+        return switchedOver;
+    }
+
+    /** For {@link KernelCore#reinstate}: true the first time only. */
+    boolean claimReinstatement() {
+        return reinstated.compareAndSet(false, true);
     }
 
     /** What makes the component's instances (for {@link KernelCore#reinstate}). */
@@ -395,6 +409,7 @@ public final class LocalShell implements Shell {
             if (!relocationRegistry.replace(profile, endpoint, forwardTo)) {
                 throw new IllegalStateException("profile '" + name + "' was re-registered during the relocation");
             }
+            switchedOver = true;
             done.complete(null);
         } catch (RuntimeException e) {
             done.completeExceptionally(e);
