@@ -103,9 +103,9 @@
  *   <tr><td>target</td><td>relocation, hand-over (before its answer reached the source)</td>
  *       <td>the source resumes the component from the state it handed over
  *       ({@link io.etherware.core.kernel.ComponentHost#reinstate}) once the target has left without
- *       a goodbye after the INSTALL and stayed away for {@code migrationStepTimeout} (the take-over's
- *       condition, the other way round); the migration fails with {@code TARGET_UNREACHABLE}
- *       saying so. The messages forwarded or routed to the target die with it, and so does what
+ *       a goodbye after the INSTALL, before the source stopped waiting for the hand-over's answer,
+ *       and stayed away for {@code migrationStepTimeout} (the take-over's condition, the other way
+ *       round); the migration fails with {@code TARGET_UNREACHABLE} saying so. The messages forwarded or routed to the target die with it, and so does what
  *       it handled of them before it died (tested with the target's JVM killed while the source
  *       waits for the hand-over's answer)</td></tr>
  *   <tr><td>target</td><td>after the hand-over was answered</td>
@@ -148,12 +148,18 @@
  * what it forwarded. A target that stays connected but never answers (a partition: its connections
  * end by heartbeat timeout, not taken for leaving) keeps the component; the source logs that the
  * hand-over was not confirmed. Keeping even those few would need the target to admit only on the
- * source's word after the HANDOVER (one more trip in the gap).
+ * source's word after the HANDOVER (one more trip in the gap). Two instances would need a live
+ * target's connection to be reset and then cut off for a step's time before it reconnects, with
+ * the hand-over's answer lost: the take-over's caveat, the other way round.
  *
  * <p>A relocation whose switch waits for messages of the component queued at its dispatcher behind
- * another component's long handling is waited for past the step timeout, as long as the target
- * keeps its copy ({@code handoverWait} after the INSTALL, less a step for the hand-over to reach
- * it); only a handling longer than that loses the component (the migration fails saying why).
+ * another component's long handling is waited for past the step timeout. Within the target's
+ * {@code handoverWait} after the INSTALL (less a step) the migration completes, nothing lost
+ * ({@code MigrationIT}); later, the target has given its copy up and answers the late hand-over
+ * that nothing of the component is there ({@code UNKNOWN_COMPONENT}), and the source resumes it
+ * from the state it handed over, the migration failing with {@code ROLLED_BACK}: the messages
+ * forwarded to the given-up copy are lost (counted undeliverable there). Only a handling longer
+ * than twice {@code handoverWait} loses the component (the migration fails saying why).
  *
  * <h3>Why nothing is lost, duplicated or reordered</h3>
  * Every message for the component is in exactly one place: handled at the source, kept there,

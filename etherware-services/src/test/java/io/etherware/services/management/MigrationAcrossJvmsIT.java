@@ -53,11 +53,17 @@ class MigrationAcrossJvmsIT {
 
     /** The other JVM, connected to {@code a} once this returns. */
     private Process startPeer(MigrationNode a, String nodeId) throws IOException, InterruptedException {
+        return startPeer(a, nodeId, Duration.ofSeconds(1));
+    }
+
+    /** @param firstMessageWait how long the peer answers a hand-over late when no message comes */
+    private Process startPeer(MigrationNode a, String nodeId, Duration firstMessageWait)
+            throws IOException, InterruptedException {
         String classPath = System.getProperty("surefire.test.class.path", System.getProperty("java.class.path"));
         var command = List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
                 "--enable-native-access=ALL-UNNAMED", "-cp", classPath, MigrationPeer.class.getName(), nodeId,
                 "127.0.0.1", String.valueOf(a.address().getPort()), String.valueOf(STEP_TIMEOUT.toMillis()),
-                a.node.nodeId());
+                a.node.nodeId(), String.valueOf(firstMessageWait.toMillis()));
         Path err = logs.resolve(nodeId + ".err");
         Process process = new ProcessBuilder(command).redirectError(err.toFile()).start();
         var ready = CompletableFuture.supplyAsync(() -> {
@@ -173,7 +179,7 @@ class MigrationAcrossJvmsIT {
     /**
      * The target JVM is killed (SIGKILL) after the relocation, while this node waits for the
      * answer to the hand-over (the counter, sent nothing, is answered for only after the target's
-     * first-message wait of 1 s): the target had the counter's state but ran nothing of it, so the
+     * first-message wait of 5 s): the target had the counter's state but ran nothing of it, so the
      * counter resumes here from that state, under its profile, counting on; the migration fails
      * saying so.
      */
@@ -187,7 +193,8 @@ class MigrationAcrossJvmsIT {
             }
             Await.until("five handled here", () -> reports.size() == 5);
             Shell before = a.node.shell(COUNTER);
-            Process b = startPeer(a, "jvm-b");
+            // It answers the hand-over of an idle component after 5 s: time to kill it in between.
+            Process b = startPeer(a, "jvm-b", Duration.ofSeconds(5));
             try {
                 var move = Management.migrate(a.node, "jvm-a", COUNTER, "jvm-b", Duration.ofSeconds(30));
                 Await.until("relocated to B", () -> move.isDone()

@@ -42,6 +42,9 @@ class MigrationIT {
 
     private static final Profile COUNTER = Profile.parse("counter[test=migration]");
     private static final long STREAM_PERIOD_NS = TimeUnit.MICROSECONDS.toNanos(500);
+    /** Four ordinary dispatchers (HIGH, MIDDLE, LOW apart): the management steps do not queue behind MIDDLE work. */
+    private static final Supplier<Scheduler> FOUR_DISPATCHERS = () -> new RealtimeScheduler(
+            RealtimeSchedulerConfig.builder().threadSchedulingRule(ThreadSchedulingRule.nonRealtime(4)).build());
 
     private static MigrateRequest to(String toNode, Class<?> type) {
         return new MigrateRequest(COUNTER, toNode, type.getName(), null, null);
@@ -90,45 +93,20 @@ class MigrationIT {
 
     /**
      * When the migration relocates the counter, five of its messages wait at its dispatcher
-     * behind another component's handling of 1.2 s, longer than a migration step (0.5 s here): the
+     * behind another component's handling of 3 s, longer than a migration step (1 s here): the
      * relocation's switch waits for them, and the source waits for the switch as long as the
-     * target keeps its copy (the hand-over wait, 4 s, less a step), so the counter arrives with the
+     * target keeps its copy (the hand-over wait, 6 s, less a step), so the counter arrives with the
      * five, in order, nothing lost. The HIGH management requests have a dispatcher of their own.
      */
     @Test
     void shouldWaitForARelocationHeldUpByAnotherComponentsLongHandlingWithNothingLost() throws Exception {
-        Supplier<Scheduler> fourDispatchers = () -> new RealtimeScheduler(RealtimeSchedulerConfig.builder()
-                .threadSchedulingRule(ThreadSchedulingRule.nonRealtime(4)).build());
-        ManagementConfig config = MigrationNode.config().migrationStepTimeout(Duration.ofMillis(500))
-                .handoverWait(Duration.ofSeconds(4)).build();
-        Profile blocker = Profile.of("blocker");
-        try (var a = MigrationNode.start("mig-a", fourDispatchers, config);
-             var b = MigrationNode.start("mig-b", fourDispatchers, config, a.address())) {
-            var reports = new CopyOnWriteArrayList<Counted>();
-            a.node.add(ReportingCounter.SINK, () -> (message, context) -> reports.add((Counted) message.contents()));
-            a.node.add(COUNTER, ReportingCounter::new);
-            var blocking = new CountDownLatch(1);
-            a.node.add(blocker, () -> (message, context) -> {
-                blocking.countDown();
-                try {
-                    Thread.sleep(1200);
-                } catch (InterruptedException e) {
-                    Thread.currentThread().interrupt();
-                }
-            });
-            a.awaitManagementOf("mig-b");
-            b.awaitManagementOf("mig-a");
-            Await.until("B routes the sink", () -> b.node.registry().profiles().contains(ReportingCounter.SINK));
-
-            a.node.send(blocker, new Seq(-1), SeqStream.QOS);
-            assertTrue(blocking.await(30, TimeUnit.SECONDS), "the long handling began");
-            for (long i = 0; i < 5; i++) {
-                a.node.send(COUNTER, new Seq(i), SeqStream.QOS); // queued behind it, same dispatcher
-            }
+        try (var a = MigrationNode.start("mig-a", FOUR_DISPATCHERS, slowSwitchConfig(6));
+             var b = MigrationNode.start("mig-b", FOUR_DISPATCHERS, slowSwitchConfig(6), a.address())) {
+            List<Counted> reports = fiveQueuedBehindALongHandling(a, b, 3000);
             MigrationResult moved = Management.migrate(a.node, "mig-a", COUNTER, "mig-b").get(30, TimeUnit.SECONDS);
 
             assertEquals("mig-b", moved.toNode());
-            assertTrue(moved.relocateNs() > TimeUnit.MILLISECONDS.toNanos(500), "the switch took more than a step: "
+            assertTrue(moved.relocateNs() > TimeUnit.SECONDS.toNanos(1), "the switch took more than a step: "
                     + moved);
             assertHostedBy(b, a);
             Await.until("the five handled at B", () -> reports.size() == 5);
@@ -137,6 +115,67 @@ class MigrationIT {
             assertEquals(0, b.management.abandonedInCount(), "the target kept its copy");
             assertEquals(0, a.node.stats().undeliverable() + b.node.stats().undeliverable());
         }
+    }
+
+    /**
+     * As above, but the other handling (4 s) outlasts the target's hand-over wait (2.5 s): the
+     * target gives its copy up, the late hand-over is answered that nothing of the counter is
+     * there, and the counter resumes at the source from the state it handed over. The five
+     * messages went to the given-up copy and are lost, counted undeliverable there; the migration
+     * fails, saying so.
+     */
+    @Test
+    void shouldResumeAtTheSourceWhenTheTargetGaveItsCopyUpBeforeASlowRelocationSwitched() throws Exception {
+        try (var a = MigrationNode.start("mig-a", FOUR_DISPATCHERS, slowSwitchConfig(2.5));
+             var b = MigrationNode.start("mig-b", FOUR_DISPATCHERS, slowSwitchConfig(2.5), a.address())) {
+            List<Counted> reports = fiveQueuedBehindALongHandling(a, b, 4000);
+            var failure = failureOf(Management.migrate(a.node, "mig-a", COUNTER, "mig-b"));
+
+            assertEquals(ManagementFailure.Reason.ROLLED_BACK, failure.reason(), failure.error());
+            assertTrue(failure.error().contains("resumed at 'mig-a' from the state it handed over"), failure.error());
+            assertEquals(1, b.management.abandonedInCount(), "the target gave its copy up");
+            assertHostedBy(a, b);
+            a.node.send(COUNTER, new Seq(5), SeqStream.QOS);
+            Await.until("handled at A", () -> reports.size() == 1);
+            assertEquals(List.of(new Counted(5, 1)), reports, "from the state handed over (none of the five)");
+            Await.until("the five counted undeliverable at B", () -> b.node.stats().undeliverable() == 5);
+        }
+    }
+
+    private static ManagementConfig slowSwitchConfig(double handoverWaitS) {
+        return MigrationNode.config().migrationStepTimeout(Duration.ofSeconds(1))
+                .handoverWait(Duration.ofMillis((long) (handoverWaitS * 1000))).build();
+    }
+
+    /**
+     * Adds the sink and the counter to {@code a} and a blocker that handles its one message for
+     * {@code blockMs}; once that handling has begun, sends the counter five messages, which queue
+     * behind it on the same (MIDDLE) dispatcher. Returns the counter's reports.
+     */
+    private static List<Counted> fiveQueuedBehindALongHandling(MigrationNode a, MigrationNode b, long blockMs)
+            throws InterruptedException {
+        Profile blocker = Profile.of("blocker");
+        var reports = new CopyOnWriteArrayList<Counted>();
+        a.node.add(ReportingCounter.SINK, () -> (message, context) -> reports.add((Counted) message.contents()));
+        a.node.add(COUNTER, ReportingCounter::new);
+        var blocking = new CountDownLatch(1);
+        a.node.add(blocker, () -> (message, context) -> {
+            blocking.countDown();
+            try {
+                Thread.sleep(blockMs);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+        });
+        a.awaitManagementOf("mig-b");
+        b.awaitManagementOf("mig-a");
+        Await.until("B routes the sink", () -> b.node.registry().profiles().contains(ReportingCounter.SINK));
+        a.node.send(blocker, new Seq(-1), SeqStream.QOS);
+        assertTrue(blocking.await(30, TimeUnit.SECONDS), "the long handling began");
+        for (long i = 0; i < 5; i++) {
+            a.node.send(COUNTER, new Seq(i), SeqStream.QOS);
+        }
+        return reports;
     }
 
     @Test

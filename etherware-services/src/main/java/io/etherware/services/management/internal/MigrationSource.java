@@ -74,7 +74,8 @@ public final class MigrationSource {
      * @param qos        the request's QoS: the gap runs at the priority of its dispatcher
      *                   ({@link GapPriority})
      * @param receivedNs when the request reached the management service
-     * @throws LoadFailure if the migration failed; the component then runs here as before
+     * @throws LoadFailure if the migration failed; the component then runs here as before, unless
+     *                     the failure says otherwise (a relocation that failed or did not switch)
      */
     public MigrationResult migrate(Shell shell, MigrateRequest request, QoS qos, long receivedNs) throws LoadFailure {
         String toNode = request.toNode();
@@ -146,6 +147,7 @@ public final class MigrationSource {
             throw new LoadFailure(Reason.ROLLED_BACK, "the snapshot of '" + profile + "' failed (" + cause
                     + "); it resumed at '" + kernel.nodeId() + "'", cause);
         }
+        long installSentNs = kernel.clock().nanoTime();
         try {
             step(toNode, new MigrationStep(Phase.INSTALL, profile, kernel.nodeId(), arrival, null, null, null, state, 0,
                     stepNs), stepNs);
@@ -159,15 +161,21 @@ public final class MigrationSource {
         // The switch: the profile now routes to the target, the held messages go first (FIFO stream).
         var route = new ArrivalRoute(network.routeTo(toNode), arrival, profile);
         try {
-            awaitSwitch(kernel.relocateAsync(profile, route), profile, toNode, installedNs);
+            awaitSwitch(kernel.relocateAsync(profile, route), profile, toNode, installSentNs);
         } catch (ExecutionException | InterruptedException e) {
-            // The relocation failed (its profile was registered anew meanwhile, say).
-            kernel.release(profile);
+            // The relocation failed (its profile was registered anew meanwhile, say): the component
+            // may be stopped already; the release resumes it if it is not.
+            try {
+                kernel.release(profile);
+            } catch (RuntimeException notHere) {
+                log.debug("node {}: no release after the failed relocation of '{}': {}", kernel.nodeId(), profile,
+                        notHere.toString());
+            }
             if (e instanceof InterruptedException) {
                 Thread.currentThread().interrupt();
             }
-            throw new LoadFailure(Reason.SERVICE_FAILED, "relocating '" + profile + "' to '" + toNode + "' failed: "
-                    + e, e);
+            throw new LoadFailure(Reason.SERVICE_FAILED, "relocating '" + profile + "' to '" + toNode + "' failed ("
+                    + e + "); it may be stopped at '" + kernel.nodeId() + "' (see the log)", e);
         }
         long relocatedNs = kernel.clock().nanoTime();
         long heldMessages = route.forwardedSoFar();
@@ -179,13 +187,15 @@ public final class MigrationSource {
         network.followAnnouncements(profile, route, toNode);
         long firstEpochNs = -1;
         String implementation = className;
+        long handoverTimeoutNs = stepNs + config.firstMessageWaitNs();
+        long handoverSentNs = kernel.clock().nanoTime();
         try {
             MigrationStepDone done = step(toNode, new MigrationStep(Phase.HANDOVER, profile, kernel.nodeId(), arrival,
-                    null, null, null, null, forwarded, stepNs), stepNs + config.firstMessageWaitNs());
+                    null, null, null, null, forwarded, stepNs), handoverTimeoutNs);
             firstEpochNs = done.firstHandlingEpochNs();
             implementation = done.implementation();
         } catch (LoadFailure e) {
-            resumeIfTargetLeft(shell, toNode, state, quiescedNs, e);
+            resumeIfTargetHasNone(shell, toNode, state, installSentNs, handoverSentNs + handoverTimeoutNs, e);
             log.warn("node {}: '{}' moved to '{}', but its hand-over was not confirmed: {}", kernel.nodeId(), profile,
                     toNode, e.getMessage());
         }
@@ -202,14 +212,17 @@ public final class MigrationSource {
      * a boundary): it stops the component here and forwards what the hold kept; the switch then
      * waits for the component's jobs already queued at a dispatcher to be forwarded as they come
      * up. Behind a long handling of another component on the same dispatcher that can take more
-     * than a step; releasing the hold could not resume the component then, so this waits on, as
+     * than a step; releasing the hold could not resume the component then, so this waits on: as
      * long as the target keeps its copy ({@link ManagementConfig#handoverWaitNs()} after the
-     * INSTALL), less a step for the hand-over to reach it.
+     * INSTALL, less a step for the hand-over to reach it), the migration completes; later, the
+     * hand-over finds the target's copy given up and the component resumes here from the state it
+     * handed over ({@link #resumeIfTargetHasNone}), the messages forwarded meanwhile lost with that
+     * copy. Waits at most twice the hand-over wait in all.
      *
      * @throws LoadFailure if the switch did not come by then: the component is lost (it is stopped
-     *                     here, and the target gives its copy up)
+     *                     here, its copy at the target given up)
      */
-    private void awaitSwitch(CompletableFuture<Void> switched, Profile profile, String toNode, long installedNs)
+    private void awaitSwitch(CompletableFuture<Void> switched, Profile profile, String toNode, long installSentNs)
             throws ExecutionException, InterruptedException, LoadFailure {
         long stepNs = config.migrationStepTimeoutNs();
         try {
@@ -217,71 +230,111 @@ public final class MigrationSource {
             return;
         } catch (TimeoutException e) {
             log.warn("node {}: the relocation of '{}' has not switched after {} ms: jobs of it wait behind a long"
-                    + " handling of another component on their dispatcher; waiting on", kernel.nodeId(), profile,
-                    TimeUnit.NANOSECONDS.toMillis(stepNs));
+                    + " handling of another component on their dispatcher (a handler must not block); waiting on",
+                    kernel.nodeId(), profile, TimeUnit.NANOSECONDS.toMillis(stepNs));
         }
-        long moreNs = installedNs + config.handoverWaitNs() - stepNs - kernel.clock().nanoTime();
+        // The target's hand-over wait began after the INSTALL left here.
+        long keptUntilNs = installSentNs + config.handoverWaitNs() - stepNs;
         try {
-            switched.get(Math.max(0, moreNs), TimeUnit.NANOSECONDS);
+            switched.get(Math.max(0, keptUntilNs - kernel.clock().nanoTime()), TimeUnit.NANOSECONDS);
+            return;
+        } catch (TimeoutException e) {
+            log.warn("node {}: the relocation of '{}' has still not switched; node '{}' gives its copy up, so it will"
+                    + " resume here from the state it handed over once it switches", kernel.nodeId(), profile, toNode);
+        }
+        long lastNs = installSentNs + 2 * config.handoverWaitNs();
+        try {
+            switched.get(Math.max(0, lastNs - kernel.clock().nanoTime()), TimeUnit.NANOSECONDS);
         } catch (TimeoutException e) {
             String why = "the relocation of '" + profile + "' to '" + toNode + "' did not switch within "
-                    + TimeUnit.NANOSECONDS.toMillis(config.handoverWaitNs() - stepNs) + " ms of the INSTALL: jobs of"
-                    + " it waited behind a handling of another component on their dispatcher that ran longer (a"
+                    + TimeUnit.NANOSECONDS.toMillis(2 * config.handoverWaitNs()) + " ms of the INSTALL: jobs of it"
+                    + " waited behind a handling of another component on their dispatcher that ran longer (a"
                     + " handler must not block); '" + profile + "' is stopped at '" + kernel.nodeId()
-                    + "' and its copy at '" + toNode + "' is given up after the hand-over wait: it is lost";
+                    + "' and its copy at '" + toNode + "' was given up: it is lost";
             log.error("node {}: {}", kernel.nodeId(), why);
             throw new LoadFailure(Reason.SERVICE_FAILED, why, e);
         }
     }
 
     /**
-     * After a hand-over that was not confirmed: if the target's process left without a goodbye
-     * after the INSTALL was sent and stays away for a step's time (what makes a target take over
-     * from a source that died, {@code MigrationTarget}), it died before it could have run the
-     * component for long: the component resumes here from the state it handed over, and the
-     * migration fails saying so. Otherwise returns, and the component stays with the target (a
-     * target that only answered late runs it).
+     * After a hand-over that was not confirmed, resumes the component here from the state it
+     * handed over when the target holds no copy that could run:
+     * <ul>
+     *   <li>the target answered that nothing of it is there ({@code UNKNOWN_COMPONENT}: it gave its
+     *       copy up after its hand-over wait, the relocation having been slow); or</li>
+     *   <li>its process left without a goodbye after the INSTALL was sent and before this side
+     *       stopped waiting for the hand-over's answer, and stays away for a step's time (the
+     *       condition of a take-over, {@code MigrationTarget}, the other way round): it died before
+     *       its answer came, having run the component at most for the messages handled before
+     *       that answer would have left.</li>
+     * </ul>
+     * Otherwise returns, and the component stays with the target (one that answered late runs it).
      *
-     * @param sinceNs   before the INSTALL was sent: a departure before it was of another incarnation
-     * @param handOver  why the hand-over failed
-     * @throws LoadFailure if the component resumed here (or could not)
+     * @param sinceNs  when the INSTALL was sent: a departure before it was of another incarnation
+     * @param untilNs  when this side stopped waiting for the hand-over's answer: a target that left
+     *                 later may have answered late and run the component for long
+     * @param handOver why the hand-over failed
+     * @throws LoadFailure if the component resumed here, or should have and could not
      */
-    private void resumeIfTargetLeft(Shell relocated, String toNode, ComponentState state, long sinceNs,
-                                    LoadFailure handOver) throws LoadFailure {
+    private void resumeIfTargetHasNone(Shell relocated, String toNode, ComponentState state, long sinceNs,
+                                       long untilNs, LoadFailure handOver) throws LoadFailure {
+        String why;
+        Reason reason = Reason.TARGET_UNREACHABLE;
+        if (handOver.reason() == Reason.UNKNOWN_COMPONENT) {
+            why = handOver.getMessage();
+            reason = Reason.ROLLED_BACK;
+        } else if (targetLeft(toNode, sinceNs, untilNs, relocated.profile())) {
+            why = handOver.getMessage() + "; node '" + toNode + "' left without a goodbye after the INSTALL and has"
+                    + " not come back for " + TimeUnit.NANOSECONDS.toMillis(config.migrationStepTimeoutNs()) + " ms";
+        } else {
+            return;
+        }
         Profile profile = relocated.profile();
+        Shell back;
+        try {
+            back = kernel.reinstate(relocated, state);
+        } catch (Exception | LinkageError e) {
+            log.error("node {}: '{}' could not resume from the state it handed over ({}): {}", kernel.nodeId(),
+                    profile, why, e.toString());
+            throw new LoadFailure(Reason.SERVICE_FAILED, why + "; resuming '" + profile + "' at '" + kernel.nodeId()
+                    + "' from the state it handed over failed: " + e, e);
+        }
+        if (back.state() == Shell.State.FAILED) {
+            throw new LoadFailure(Reason.ROLLED_BACK, why + "; '" + profile + "' was brought back at '"
+                    + kernel.nodeId() + "' from the state it handed over, but its onStart threw (see the log)");
+        }
+        log.warn("node {}: {}; '{}' resumed here from the state it handed over (what was sent to it since the"
+                + " relocation went to that node and is lost)", kernel.nodeId(), why, profile);
+        throw new LoadFailure(reason, why + "; '" + profile + "' resumed at '" + kernel.nodeId()
+                + "' from the state it handed over", handOver);
+    }
+
+    /**
+     * Whether node {@code toNode}'s process left without a goodbye within ({@code sinceNs},
+     * {@code untilNs}] and stays away for a step's time; looks for up to two steps.
+     */
+    private boolean targetLeft(String toNode, long sinceNs, long untilNs, Profile profile) throws LoadFailure {
         long stepNs = config.migrationStepTimeoutNs();
         long lookUntilNs = kernel.clock().nanoTime() + 2 * stepNs;
         try {
             while (true) {
                 long nowNs = kernel.clock().nanoTime();
                 long goneNs = network.goneWithoutGoodbye(toNode).map(Duration::toNanos).orElse(-1L);
-                if (goneNs >= 0 && nowNs - goneNs > sinceNs) {
+                long leftAtNs = nowNs - goneNs;
+                if (goneNs >= 0 && leftAtNs > sinceNs && leftAtNs <= untilNs) {
                     if (goneNs >= stepNs) {
-                        break;
+                        return true;
                     }
                 } else if (nowNs >= lookUntilNs) {
-                    return;
+                    return false;
                 }
                 Thread.sleep(TimeUnit.NANOSECONDS.toMillis(TARGET_WATCH_NS));
             }
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
-            return;
+            throw new LoadFailure(Reason.SERVICE_FAILED, "interrupted while looking whether node '" + toNode
+                    + "', which did not confirm the hand-over of '" + profile + "', is gone");
         }
-        String why = handOver.getMessage() + "; node '" + toNode + "' left without a goodbye after the INSTALL and"
-                + " has not come back for " + TimeUnit.NANOSECONDS.toMillis(stepNs) + " ms";
-        try {
-            kernel.reinstate(relocated, state);
-        } catch (Exception e) {
-            log.error("node {}: '{}' could not resume from the state it handed over ({}): {}", kernel.nodeId(),
-                    profile, why, e.toString());
-            throw new LoadFailure(Reason.SERVICE_FAILED, why + "; resuming '" + profile + "' at '" + kernel.nodeId()
-                    + "' from the state it handed over failed: " + e, e);
-        }
-        log.warn("node {}: {}; '{}' resumed here from the state it handed over (what was sent to it since the"
-                + " relocation went to that node and is lost with it)", kernel.nodeId(), why, profile);
-        throw new LoadFailure(Reason.TARGET_UNREACHABLE, why + "; '" + profile + "' resumed at '" + kernel.nodeId()
-                + "' from the state it handed over", handOver);
     }
 
     /** Sends one step to the target's management service and waits for its answer. */

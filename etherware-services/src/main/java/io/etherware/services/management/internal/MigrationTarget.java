@@ -36,7 +36,9 @@ import org.slf4j.LoggerFactory;
  * could have resumed it (its INSTALL step failing), and stayed away for a migration step's time, is
  * taken over: admitted with what was forwarded, since that source resumed nothing. One installed
  * but otherwise never handed over within
- * {@link ManagementConfig#handoverWaitNs()} is removed again: its source has resumed it by then.
+ * {@link ManagementConfig#handoverWaitNs()} is removed again: its source has resumed it by then,
+ * or resumes it when its late HANDOVER is answered that nothing of it is here
+ * ({@code UNKNOWN_COMPONENT}).
  * An instance prepared but never installed is discarded after
  * {@code settleWait + 2 × migrationStepTimeout + handoverWait}: by then its source has sent the
  * INSTALL (it waits at most {@code settleWait} and a step for the hold, then a step for the
@@ -227,8 +229,15 @@ public final class MigrationTarget {
             requireSameSource(step, arrival.fromNode());
         }
         if (arrival == null || !arrived.remove(profile, arrival)) {
-            throw new LoadFailure(Reason.BAD_REQUEST, "no migrated '" + profile + "' waits for its hand-over on node '"
-                    + kernel.nodeId() + "' (not installed, or given up after handoverWait)");
+            if (hostsLocally(profile)) {
+                // Taken over (its source seemed gone), or admitted already: the source must not resume it.
+                throw new LoadFailure(Reason.BAD_REQUEST, "'" + profile + "' runs on node '" + kernel.nodeId()
+                        + "' already (taken over, or handed over before); it is not waiting for a hand-over");
+            }
+            // Nothing of it here: the source may resume it (see MigrationSource).
+            throw new LoadFailure(Reason.UNKNOWN_COMPONENT, "no migrated '" + profile + "' waits for its hand-over on"
+                    + " node '" + kernel.nodeId() + "' and none runs here (not installed, or given up after"
+                    + " handoverWait)");
         }
         try {
             kernel.admit(arrival.arrival(), step.forwarded());
