@@ -105,9 +105,10 @@
  *       ({@link io.etherware.core.kernel.ComponentHost#reinstate}) once the target has left without
  *       a goodbye after the INSTALL, before the source stopped waiting for the hand-over's answer,
  *       and stayed away for {@code migrationStepTimeout} (the take-over's condition, the other way
- *       round); the migration fails with {@code TARGET_UNREACHABLE} saying so. The messages forwarded or routed to the target die with it, and so does what
- *       it handled of them before it died (tested with the target's JVM killed while the source
- *       waits for the hand-over's answer)</td></tr>
+ *       round); the migration fails with {@code TARGET_UNREACHABLE} saying so. The messages
+ *       forwarded or routed to the target die with it, and so does what it handled of them before
+ *       it died (tested with the target's JVM killed while the source waits for the hand-over's
+ *       answer)</td></tr>
  *   <tr><td>target</td><td>after the hand-over was answered</td>
  *       <td>the component is gone with its node, as it would be without a migration</td></tr>
  *   <tr><td>source</td><td>prepare, quiesce, its snapshot (before the INSTALL left)</td>
