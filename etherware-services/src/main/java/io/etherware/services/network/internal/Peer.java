@@ -28,10 +28,10 @@ final class Peer {
      * When the last active connection of the node's incarnation {@link #silentIncarnation} ended
      * without a goodbye ({@link Connection#endedWithoutGoodbye}); -1 if it said goodbye, or that
      * incarnation connected again. A later incarnation's connection leaves it: the process that
-     * left is gone for good. Both guarded by this; read lock-free as a pair by {@link #goneSinceNs}.
+     * left is gone for good. Both guarded by this.
      */
-    private volatile long silentSinceNs = -1;
-    private volatile long silentIncarnation;
+    private long silentSinceNs = -1;
+    private long silentIncarnation;
 
     Peer(String nodeId, NetworkContext context) {
         this.nodeId = nodeId;
