@@ -40,15 +40,20 @@ public interface ComponentHost extends Kernel {
 
     /**
      * {@link #holdAsync(Profile)} at a boundary where the component is also quiescent: it waits for
-     * no outcome of a request of its own (Kramer and Magee's passive state). Until then the
-     * component runs on as usual, so the outcomes of its requests in flight reach it here, and a
-     * migration that holds it this way moves no request that could not follow it. A component
-     * that still waits for an outcome after {@code settleWait} is held at its next boundary
-     * anyway (each boundary then, or at the latest when {@code settleWait} ends).
+     * no outcome of a request of its own (Kramer and Magee's passive state), and no message from
+     * another component is queued for it (one it sent itself does not count). Until then the
+     * component runs on as usual, so the outcomes of its requests in flight and the messages
+     * already waiting for it are handled here: a migration that holds it this way moves no
+     * request that could not follow it, and carries no message queued before the hold across the
+     * network behind the state, where it could arrive past its deadline (a control loop's Tick
+     * queued at the hold would be a lost cycle). A component that is still not quiescent after
+     * {@code settleWait} (it always has a request in flight, or messages keep coming faster than
+     * it handles them) is held at its next boundary anyway (each boundary then, or at the latest
+     * when {@code settleWait} ends).
      *
      * @param profile    the exact profile of a local component, or a query that matches only it
-     * @param settleWait how long to wait for the outcomes of its requests; zero holds at the next
-     *                   boundary
+     * @param settleWait how long to wait for the component to be quiescent; zero holds at the
+     *                   next boundary
      * @return a future that completes when the component is held; failed as
      *         {@link #holdAsync(Profile)}'s is
      * @throws ProfileResolutionException if the profile does not resolve

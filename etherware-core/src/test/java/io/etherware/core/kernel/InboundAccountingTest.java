@@ -62,4 +62,21 @@ class InboundAccountingTest {
             assertEquals(0, node.queuedBytesFrom("peer-b"));
         }
     }
+
+    @Test
+    void shouldReleaseTheBytesOfMessagesKeptAtAHoldWhenARelocationForwardsThem() throws Exception {
+        var forwarded = new java.util.concurrent.CopyOnWriteArrayList<Message>();
+        try (var node = EtherwareNode.builder().nodeId("receiver").build()) {
+            node.add(SLOW, () -> (message, context) -> { });
+            node.start();
+            node.holdAsync(SLOW).get(30, TimeUnit.SECONDS);
+            node.send(fromNetwork("peer-a", 0, 1000));
+            node.send(fromNetwork("peer-a", 1, 300));
+            assertEquals(1300, node.queuedBytesFrom("peer-a"));
+            Thread.sleep(100); // both reach the gate and are kept there
+            node.relocateAsync(SLOW, forwarded::add).get(30, TimeUnit.SECONDS);
+            assertEquals(2, forwarded.size(), "both kept messages went to the route");
+            assertEquals(0, node.queuedBytesFrom("peer-a"), "what was forwarded no longer holds the peer's budget");
+        }
+    }
 }

@@ -93,7 +93,8 @@ import java.util.Set;
  * @param handoverWaitNs       how long a migration's target waits for the hand-over
  * @param settleWaitNs         how long a migration's source waits, before it holds the component,
  *                             and an upgrade before it swaps the logic, for the outcomes of the
- *                             component's own requests in flight
+ *                             component's own requests in flight (a migration: and for the
+ *                             messages of other components already queued for it)
  * @param maxQueuedOperations  how many operations may wait behind the one in progress (each of
  *                             the two queues: operations of this node, PREPARE steps into it)
  * @param classLoader          the node's class loader for implementations

@@ -58,12 +58,15 @@
  *   <li><b>prepare</b>: the target loads the class (class path or allowlisted jar, as for an
  *       upgrade) and constructs the instance; the component runs on meanwhile.</li>
  *   <li><b>quiesce</b>: the source holds the component at a message boundary where it waits for
- *       no outcome of a request of its own (Kramer and Magee's passive state,
- *       {@link io.etherware.core.kernel.ComponentHost#holdAsync(io.etherware.core.message.Profile,
+ *       no outcome of a request of its own (Kramer and Magee's passive state) and no message of
+ *       another component is queued for it
+ *       ({@link io.etherware.core.kernel.ComponentHost#holdAsync(io.etherware.core.message.Profile,
  *       java.time.Duration)}); its messages are kept from then on, in order. Until then it runs
  *       on, so the replies to its requests in flight reach it at the source, where the callbacks
  *       that wait for them live: a callback cannot travel, so the request completes before the
- *       move instead of after it. One that still waits after
+ *       move instead of after it; and a message already queued (a control loop's Tick) is
+ *       handled at the source in its period rather than carried behind the state and handled
+ *       after the move, perhaps past its deadline. One that is still not quiescent after
  *       {@link io.etherware.services.management.ManagementConfig#settleWaitNs()} (100 ms by
  *       default) is held anyway; the outcomes that come later go to the stopped instance.</li>
  *   <li><b>transfer</b>: the snapshot travels as XML in the INSTALL step; the target restores it

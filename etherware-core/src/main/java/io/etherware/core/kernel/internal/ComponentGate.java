@@ -185,6 +185,11 @@ final class ComponentGate {
         STATE.getAndBitwiseOr(this, HELD);
     }
 
+    /** Whether arrivals are kept (a hold); any thread, a snapshot. */
+    boolean isHeld() {
+        return (state & HELD) != 0;
+    }
+
     /** Owner only: end a hold; the kept jobs are handed over when the owner leaves. */
     void endHoldOnLeave() {
         STATE.getAndBitwiseAnd(this, ~HELD);

@@ -120,7 +120,7 @@ final class Delivery {
             }
             return;
         }
-        countInbound(message, +1);
+        shell.countQueued(message, +1);
         long sequence = jobSequence.getAndIncrement();
         boolean penned = shell.pens(message);
         if (penned) {
@@ -141,7 +141,7 @@ final class Delivery {
     void submit(Job job, LocalShell shell) {
         if (!scheduler.submit(job)) {
             shell.leaveQueue();
-            countInbound(job.message(), -1);
+            shell.countQueued(job.message(), -1);
             discard(job);
         }
     }

@@ -92,7 +92,7 @@ public final class LocalShell implements Shell {
         Objects.requireNonNull(policy, "policy");
         this.endpoint = new Endpoint.Local(this);
         this.gate = new ComponentGate(kernel, name);
-        this.settling = new SettleQueue(kernel.clock());
+        this.settling = new SettleQueue(kernel.clock(), gate::isHeld);
         this.logic = new ComponentLogic(kernel.nodeId(), kernel.clock(), profile, factory, policy,
                 new ShellContext(kernel, this), kernel.supervision());
     }
@@ -250,8 +250,21 @@ public final class LocalShell implements Shell {
     }
 
     /** See {@link SettleQueue#whenSettled}. */
-    void whenSettled(Runnable action, long byNs, boolean now) {
-        settling.whenSettled(action, byNs, now);
+    void whenSettled(Runnable action, long byNs, boolean now, boolean drains) {
+        settling.whenSettled(action, byNs, now, drains);
+    }
+
+    /**
+     * A job of {@code message} was made for this component ({@code +1}), or left its queue count
+     * ({@code -1}: ran, forwarded, or refused): counts its bytes from the network, and whether it
+     * came from another component (see {@link SettleQueue}).
+     */
+    void countQueued(Message message, int sign) {
+        delivery.countInbound(message, sign);
+        Profile sender = message.sender();
+        if (sender != profile && !profile.equals(sender)) {
+            settling.othersQueued(sign);
+        }
     }
 
     /** See {@link SettleQueue#settleDeadline}. */
@@ -264,7 +277,7 @@ public final class LocalShell implements Shell {
         if (job.sequence() >= Delivery.PEN_OFFSET) {
             pen.leftPenned();
         }
-        delivery.countInbound(job.message(), -1);
+        countQueued(job.message(), -1);
         leaveQueue();
     }
 
@@ -388,6 +401,7 @@ public final class LocalShell implements Shell {
                 if (kept.sequence() >= Delivery.PEN_OFFSET) {
                     pen.leftPenned();
                 }
+                countQueued(kept.message(), -1);
                 QUEUED.getAndAdd(this, -1);
             } else {
                 // The outcome of a request this (now stopped) instance made: it is local.

@@ -44,10 +44,13 @@ final class Reconfiguration {
         return held;
     }
 
-    /** Holds {@code shell} at its next boundary where it awaits no outcome, or after {@code settleWait}. */
+    /**
+     * Holds {@code shell} at its next boundary where it awaits no outcome and has no message of
+     * another component queued, or after {@code settleWait}.
+     */
     CompletableFuture<Void> holdAsync(LocalShell shell, Duration settleWait) {
         var held = new CompletableFuture<Void>();
-        whenSettled(shell, () -> shell.hold(held), settleWait, held);
+        whenSettled(shell, () -> shell.hold(held), settleWait, true, held);
         return held;
     }
 
@@ -66,7 +69,7 @@ final class Reconfiguration {
                 shell.swap(factory, swapped, onFirstHandling);
             }
         };
-        whenSettled(shell, swap, settleWait, swapped);
+        whenSettled(shell, swap, settleWait, false, swapped);
         return swapped;
     }
 
@@ -102,17 +105,19 @@ final class Reconfiguration {
     }
 
     /**
-     * Runs {@code action} at a boundary of {@code shell} where it awaits no outcome of its
-     * requests, or at the first boundary after {@code settleWait} (a timer makes one if the
+     * Runs {@code action} at a boundary of {@code shell} where it is quiescent (it awaits no
+     * outcome of its requests; if {@code drains}, no message of another component is queued for
+     * it either: see {@link SettleQueue}), or at the first boundary after {@code settleWait} (a timer makes one if the
      * component is idle then); {@code done} says when no further try is needed.
      */
-    private void whenSettled(LocalShell shell, Runnable action, Duration settleWait, CompletableFuture<?> done) {
+    private void whenSettled(LocalShell shell, Runnable action, Duration settleWait, boolean drains,
+                             CompletableFuture<?> done) {
         if (Objects.requireNonNull(settleWait, "settleWait").isNegative()) {
             throw new IllegalArgumentException("settleWait=" + settleWait + " must not be negative");
         }
         long waitNs = Durations.toNs("settleWait", settleWait);
         long deadlineNs = clock.nanoTime() + waitNs;
-        shell.atBoundary(() -> shell.whenSettled(action, deadlineNs, waitNs == 0));
+        shell.atBoundary(() -> shell.whenSettled(action, deadlineNs, waitNs == 0, drains));
         if (waitNs > 0) {
             // Without a boundary after the deadline (an idle component waiting for a lost reply).
             timer.schedule(() -> {
