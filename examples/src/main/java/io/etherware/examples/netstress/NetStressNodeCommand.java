@@ -1,5 +1,6 @@
 package io.etherware.examples.netstress;
 
+import io.etherware.core.kernel.DeliveryWarmUp;
 import io.etherware.core.kernel.EtherwareNode;
 import io.etherware.core.message.Criticality;
 import io.etherware.examples.migrate.CycleReport;
@@ -123,6 +124,7 @@ public final class NetStressNodeCommand implements Callable<Integer> {
                         WarmUp.warmedCodec(node), realtimeCpus).peer(plant).build());
                 ControlListeners.Registration registration = ControlListeners.register(listener,
                         CycleReport.forwarder(node))) {
+            DeliveryWarmUp.run(node); // before real time depends on it, as node 1 does
             node.add(PendulumController.DEFAULT_PROFILE,
                     () -> new ListenedController(ListenedController.configuration(listener)));
             node.add(NetStressScenario.NODE2_STRESS, () -> new StressComponent(stressMs * 1_000_000L, events));

@@ -1,6 +1,7 @@
 package io.etherware.examples.netstress;
 
 import io.etherware.core.codec.MessageCodec;
+import io.etherware.core.kernel.DeliveryWarmUp;
 import io.etherware.core.message.Criticality;
 import io.etherware.core.message.Profile;
 import io.etherware.core.scheduler.Scheduler;
@@ -208,6 +209,7 @@ public final class NetStressScenario {
             rig.node().add(CycleReport.RECORDER, CycleReport.recorder(rig.node(), cycles));
             rig.node().add(StressComponent.PROFILE, () -> new StressComponent(settings.stressWorkNs(), events));
             rig.node().start();
+            DeliveryWarmUp.run(rig.node()); // as the other two-JVM scenarios: see its documentation
             try (NetworkMessenger net = NetworkMessenger.start(rig.node(),
                     network(variant, WarmUp.warmedCodec(rig.node()), realtimeCpus).build())) {
                 // Node 1's Notifier: SCHED_FIFO 82, above every dispatcher, in both runs.
