@@ -78,12 +78,20 @@ final class Loopback {
                     new MessageId("bench-b", 654_321), request.messageId());
             byte[] requestXml = codec.encode(request);
             byte[] replyXml = codec.encode(reply);
-            try (var pingPong = new RawPingPong(requestXml, replyXml)) {
+            Histogram handOffNs = Histograms.latencyNs();
+            Histogram handOffCodecNs = Histograms.latencyNs();
+            try (var pingPong = new RawPingPong(requestXml, replyXml, null, null, false);
+                 var handOffs = new RawPingPong(requestXml, replyXml, null, null, true);
+                 var handOffsCodec = new RawPingPong(requestXml, replyXml, codec, request, true)) {
                 int warmup = Math.max(1_000, config.roundTrips() / 3);
                 repeat(warmup, throughMessengers, null);
                 repeat(warmup, pingPong::roundTrip, null);
+                repeat(warmup, handOffs::roundTrip, null);
+                repeat(warmup, handOffsCodec::roundTrip, null);
                 for (int round = 0; round < ROUNDS; round++) {
                     repeat(config.roundTrips() / ROUNDS, pingPong::roundTrip, rawNs);
+                    repeat(config.roundTrips() / ROUNDS, handOffs::roundTrip, handOffNs);
+                    repeat(config.roundTrips() / ROUNDS, handOffsCodec::roundTrip, handOffCodecNs);
                     repeat(config.roundTrips() / ROUNDS, throughMessengers, messengerNs);
                 }
             }
@@ -96,6 +104,14 @@ final class Loopback {
                     "idle, back to back", "us", Percentiles.of(messengerNs), bytes + "; encode+decode at both ends");
             BenchRow raw = BenchRow.latency("loopback.raw", SECTION, "raw TCP ping-pong, same bytes",
                     "idle, back to back", "us", Percentiles.of(rawNs), bytes + "; no codec");
+            BenchRow handOff = BenchRow.latency("loopback.raw.hand-offs", SECTION,
+                    "raw TCP ping-pong with the messenger's two extra hand-offs", "idle, back to back", "us",
+                    Percentiles.of(handOffNs), bytes + "; no codec; reader thread to a worker at the echo,"
+                            + " reader thread to the caller at the requester: the messenger's threads, nothing else");
+            BenchRow handOffCodec = BenchRow.latency("loopback.raw.hand-offs.codec", SECTION,
+                    "raw TCP ping-pong, the two hand-offs and the XML codec", "idle, back to back", "us",
+                    Percentiles.of(handOffCodecNs), "as the row above, with the request and the reply encoded and"
+                            + " decoded by MessageCodec at both ends; what is left to the messenger is the kernel's");
             double p50Ratio = messenger.p50() / raw.p50();
             double p99Ratio = messenger.p99() / raw.p99();
             BenchRow rtIdle = BenchRow.latency("loopback.messenger.rt-idle", SECTION,
@@ -110,7 +126,8 @@ final class Loopback {
                     "NetworkMessenger HIGH request/reply, Table II nodes, one lane (lanes=1)",
                     "LOW 64 KiB messages saturate the same pair", "us", Percentiles.of(oneLane.saturatedNs()),
                     "HIGH overtakes LOW in the queues, not in the sockets (128 KiB LOW bound); " + oneLane.lowNote());
-            return List.of(messenger.judged("p50 <= 40 us", messenger.p50() <= ROUND_TRIP_AIM_US), raw,
+            return List.of(messenger.judged("p50 <= 40 us", messenger.p50() <= ROUND_TRIP_AIM_US), raw, handOff,
+                    handOffCodec,
                     BenchRow.value("loopback.ratio.p50", SECTION, "NetworkMessenger / raw TCP, p50",
                             "idle, back to back", p50Ratio, "x", "same run, same CPU-latency state")
                             .judged("<= 1.3x", p50Ratio <= 1.3),
@@ -273,59 +290,137 @@ final class Loopback {
         }
     }
 
-    /** A client and an echo thread over loopback TCP with TCP_NODELAY, 4-byte length frames. */
+    /**
+     * A client and an echo thread over loopback TCP with TCP_NODELAY, 4-byte length frames; the
+     * caller writes the request and reads the reply itself, and the echo thread reads and answers
+     * (two thread wake-ups per round trip). With hand-offs, the messenger's other two are added:
+     * at the echo, the reading thread hands each request to a worker thread that answers it (the
+     * reader and the dispatcher); at the client, a reading thread hands each reply to the caller
+     * (the reader completing a blocked requester). With a codec, the request is encoded by the
+     * caller and decoded by the worker, the reply encoded by the worker and decoded by the caller,
+     * each round trip, as the messengers do.
+     */
     private static final class RawPingPong implements AutoCloseable {
         private final ServerSocket server;
         private final Socket client;
+        private final Socket accepted;
         private final DataOutputStream out;
         private final DataInputStream in;
         private final byte[] requestXml;
-        private final Thread echo;
+        private final byte[] replyXml;
+        private final MessageCodec codec;
+        private final Message request;
+        private final List<Thread> threads = new java.util.concurrent.CopyOnWriteArrayList<>();
+        /** Replies handed over by the client's reading thread; null without hand-offs. */
+        private java.util.concurrent.BlockingQueue<byte[]> replies;
 
-        RawPingPong(byte[] requestXml, byte[] replyXml) throws IOException {
+        /**
+         * @param codec   encodes and decodes each request and reply (with {@code request}), or null
+         *                for the bytes as they are
+         * @param request  the request to encode each time, if {@code codec}
+         * @param handOffs whether the messenger's two extra thread hand-offs are added
+         */
+        RawPingPong(byte[] requestXml, byte[] replyXml, MessageCodec codec, Message request, boolean handOffs)
+                throws IOException {
             this.requestXml = requestXml;
+            this.replyXml = replyXml;
+            this.codec = codec;
+            this.request = request;
             server = new ServerSocket(0, 1, InetAddress.getLoopbackAddress());
             client = new Socket(InetAddress.getLoopbackAddress(), server.getLocalPort());
             client.setTcpNoDelay(true);
-            Socket accepted = server.accept();
+            accepted = server.accept();
             accepted.setTcpNoDelay(true);
             out = new DataOutputStream(new BufferedOutputStream(client.getOutputStream()));
             in = new DataInputStream(new BufferedInputStream(client.getInputStream()));
-            echo = Thread.ofPlatform().daemon().name("bench-raw-echo").start(() -> serve(accepted, replyXml));
+            start(handOffs);
         }
 
-        private static void serve(Socket socket, byte[] replyXml) {
-            try (socket;
-                 var input = new DataInputStream(new BufferedInputStream(socket.getInputStream()));
-                 var output = new DataOutputStream(new BufferedOutputStream(socket.getOutputStream()))) {
-                while (true) {
-                    byte[] frame = new byte[input.readInt()];
-                    input.readFully(frame);
-                    output.writeInt(replyXml.length);
-                    output.write(replyXml);
-                    output.flush();
-                }
-            } catch (IOException e) {
-                // Closed by the client: the bench is done.
+        private void start(boolean handOffs) throws IOException {
+            var input = new DataInputStream(new BufferedInputStream(accepted.getInputStream()));
+            var output = new DataOutputStream(new BufferedOutputStream(accepted.getOutputStream()));
+            if (!handOffs) {
+                start("bench-raw-echo", () -> {
+                    while (true) {
+                        answer(output, readFrame(input));
+                    }
+                });
+                return;
             }
+            var requests = new java.util.concurrent.ArrayBlockingQueue<byte[]>(16);
+            replies = new java.util.concurrent.ArrayBlockingQueue<>(16);
+            start("bench-raw-echo-reader", () -> {
+                while (true) {
+                    requests.put(readFrame(input));
+                }
+            });
+            start("bench-raw-echo-worker", () -> {
+                while (true) {
+                    answer(output, requests.take());
+                }
+            });
+            start("bench-raw-client-reader", () -> {
+                while (true) {
+                    replies.put(readFrame(in));
+                }
+            });
         }
 
-        void roundTrip() throws IOException {
-            out.writeInt(requestXml.length);
-            out.write(requestXml);
+        private interface Loop {
+            void run() throws IOException, InterruptedException;
+        }
+
+        private void start(String name, Loop loop) {
+            threads.add(Thread.ofPlatform().daemon().name(name).start(() -> {
+                try {
+                    loop.run();
+                } catch (IOException | InterruptedException e) {
+                    // Closed or interrupted by close(): the bench is done.
+                }
+            }));
+        }
+
+        private static byte[] readFrame(DataInputStream input) throws IOException {
+            byte[] frame = new byte[input.readInt()];
+            input.readFully(frame);
+            return frame;
+        }
+
+        private void answer(DataOutputStream output, byte[] requestFrame) throws IOException {
+            byte[] reply = replyXml;
+            if (codec != null) {
+                Message asked = codec.decode(requestFrame);
+                reply = codec.encode(new Message(asked.sender(), asked.profile(), asked.timeStamp(), asked.qos(),
+                        asked.contents(), new MessageId("bench-b", 654_321), asked.messageId()));
+            }
+            output.writeInt(reply.length);
+            output.write(reply);
+            output.flush();
+        }
+
+        void roundTrip() throws IOException, InterruptedException {
+            byte[] frame = codec != null ? codec.encode(request) : requestXml;
+            out.writeInt(frame.length);
+            out.write(frame);
             out.flush();
-            byte[] answer = new byte[in.readInt()];
-            in.readFully(answer);
+            byte[] answer = replies != null ? replies.take() : readFrame(in);
+            if (codec != null) {
+                codec.decode(answer);
+            }
         }
 
         @Override
         public void close() throws IOException {
             client.close();
+            accepted.close();
             server.close();
-            try {
-                echo.join(1_000);
-            } catch (InterruptedException e) {
-                Thread.currentThread().interrupt();
+            for (Thread thread : threads) {
+                thread.interrupt();
+                try {
+                    thread.join(1_000);
+                } catch (InterruptedException e) {
+                    Thread.currentThread().interrupt();
+                }
             }
         }
     }
