@@ -149,6 +149,28 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
     }
 
     /**
+     * How long after a migration's INSTALL its source may still look for the target's process
+     * having left without a goodbye, to resume the component itself (see the package
+     * documentation, "When a node dies during a migration"): the INSTALL's answer, the HANDOVER's with the target's
+     * first-message wait, and the step the target must stay away, that is
+     * {@code 2 × migrationStepTimeoutNs + firstMessageWaitNs} (5 s by default), plus the time the
+     * relocation itself takes. The source's messenger forgets a peer after its
+     * {@link io.etherware.services.network.NetworkConfig#peerDownGraceNs()} (10 s by default),
+     * which must exceed this for the resume to see the target gone;
+     * {@link ManagementService#install(io.etherware.core.kernel.EtherwareNode, ManagementConfig,
+     * io.etherware.services.network.NetworkMessenger)} warns if it does not.
+     *
+     * @return the time in ns, {@link Long#MAX_VALUE} if it overflows
+     */
+    public long targetWatchNs() {
+        try {
+            return Math.addExact(Math.multiplyExact(2, migrationStepTimeoutNs), firstMessageWaitNs);
+        } catch (ArithmeticException e) {
+            return Long.MAX_VALUE;
+        }
+    }
+
+    /**
      * The defaults listed above: local management only, no plugins.
      *
      * @return a configuration with every default

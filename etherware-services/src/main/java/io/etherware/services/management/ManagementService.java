@@ -14,7 +14,9 @@ import io.etherware.services.management.internal.MigrationTarget;
 import io.etherware.services.network.NetworkMessenger;
 import java.util.Objects;
 import java.util.Optional;
+import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicReference;
+import org.slf4j.LoggerFactory;
 
 /**
  * A node's management service (paper Section VI-C): a component at
@@ -157,6 +159,13 @@ public final class ManagementService implements Component {
      * @return the service; if its supervision restarts it, the new instances share its counters
      */
     public static ManagementService install(EtherwareNode node, ManagementConfig config, NetworkMessenger network) {
+        if (network != null && network.config().peerDownGraceNs() <= config.targetWatchNs()) {
+            LoggerFactory.getLogger(ManagementService.class).warn("node {}: the network's peerDownGrace ({} ms) is not"
+                    + " above two migration steps and the first-message wait ({} ms): a migration from this node whose"
+                    + " target dies after the relocation leaves the component lost instead of resuming it here",
+                    node.nodeId(), TimeUnit.NANOSECONDS.toMillis(network.config().peerDownGraceNs()),
+                    TimeUnit.NANOSECONDS.toMillis(config.targetWatchNs()));
+        }
         var first = new ManagementService(node, config, network);
         var unused = new AtomicReference<>(first);
         node.add(Management.profileOf(node.nodeId()), () -> {

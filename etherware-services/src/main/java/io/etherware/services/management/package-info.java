@@ -154,7 +154,12 @@
  * hand-over was not confirmed. Keeping even those few would need the target to admit only on the
  * source's word after the HANDOVER (one more trip in the gap). Two instances would need a live
  * target's connection to be reset and then cut off for a step's time before it reconnects, with
- * the hand-over's answer lost: the take-over's caveat, the other way round.
+ * the hand-over's answer lost: the take-over's caveat, the other way round. The source sees the
+ * target gone only while its messenger remembers the peer, that is for
+ * {@link io.etherware.services.network.NetworkConfig#peerDownGraceNs()} (10 s by default), which
+ * must exceed {@link io.etherware.services.management.ManagementConfig#targetWatchNs()} (5 s by
+ * default, plus the relocation's own time): installing the service with a shorter grace logs a
+ * warning.
  *
  * <p>A relocation whose switch waits for messages of the component queued at its dispatcher behind
  * another component's long handling is waited for past the step timeout. Within the target's

@@ -64,9 +64,11 @@ import java.util.Optional;
 public final class NetworkMessenger implements AutoCloseable {
 
     private final Engine engine;
+    private final NetworkConfig config;
 
-    private NetworkMessenger(Engine engine) {
+    private NetworkMessenger(Engine engine, NetworkConfig config) {
         this.engine = engine;
+        this.config = config;
     }
 
     /**
@@ -90,11 +92,20 @@ public final class NetworkMessenger implements AutoCloseable {
             throw new UncheckedIOException("node '" + kernel.nodeId() + "': cannot listen on "
                     + config.listenAddress() + ": " + e.getMessage(), e);
         }
-        var messenger = new NetworkMessenger(engine);
+        var messenger = new NetworkMessenger(engine, config);
         // A node closed first takes its messenger along (off the closing thread).
         kernel.closedFuture().thenRunAsync(messenger::close, task -> Thread.ofPlatform().daemon()
                 .name("etherware-net-" + kernel.nodeId() + "-close").start(task));
         return messenger;
+    }
+
+    /**
+     * The configuration this messenger was started with.
+     *
+     * @return the configuration, as validated
+     */
+    public NetworkConfig config() {
+        return config;
     }
 
     /**
