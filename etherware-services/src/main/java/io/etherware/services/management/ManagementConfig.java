@@ -151,8 +151,9 @@ public record ManagementConfig(List<Path> allowlist, List<X509Certificate> trust
     /**
      * How long after a migration's INSTALL its source may still look for the target's process
      * having left without a goodbye, to resume the component itself (see the package
-     * documentation, "When a node dies during a migration"): the INSTALL's answer, the HANDOVER's with the target's
-     * first-message wait, and the step the target must stay away, that is
+     * documentation, "When a node dies during a migration"): the INSTALL's answer, the
+     * HANDOVER's with the target's first-message wait, and the step the target must stay away,
+     * that is
      * {@code 2 × migrationStepTimeoutNs + firstMessageWaitNs} (5 s by default), plus the time the
      * relocation itself takes. The source's messenger forgets a peer after its
      * {@link io.etherware.services.network.NetworkConfig#peerDownGraceNs()} (10 s by default),

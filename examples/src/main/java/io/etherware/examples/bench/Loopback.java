@@ -32,10 +32,11 @@ import org.HdrHistogram.Histogram;
  * Section 5: a request and its reply over loopback TCP through two NetworkMessengers (outside
  * node a to an echo component on node b and back: XML encoded and decoded at both ends, each
  * node's kernel and dispatcher in the path), beside a raw TCP ping-pong of the same bytes (4-byte
- * length frames, TCP_NODELAY). Round trips are back to back (closed loop), so the percentiles are
- * of round trips as they came; the two phases alternate over rounds so that a change of load on a
- * shared machine hits both alike. From the services module's loopback harness. Runs on the
- * caller's thread.
+ * length frames, TCP_NODELAY) and two steps between them (the ping-pong with the messenger's two
+ * extra thread hand-offs, then with the XML codec too). Round trips are back to back (closed
+ * loop), so the percentiles are of round trips as they came; the four phases alternate over rounds
+ * so that a change of load on a shared machine hits them alike. From the services module's
+ * loopback harness. Runs on the caller's thread.
  */
 final class Loopback {
 
@@ -403,7 +404,10 @@ final class Loopback {
             out.writeInt(frame.length);
             out.write(frame);
             out.flush();
-            byte[] answer = replies != null ? replies.take() : readFrame(in);
+            byte[] answer = replies != null ? replies.poll(10, TimeUnit.SECONDS) : readFrame(in);
+            if (answer == null) {
+                throw new IOException("no reply within 10 s: the echo's worker or the client's reader stopped");
+            }
             if (codec != null) {
                 codec.decode(answer);
             }

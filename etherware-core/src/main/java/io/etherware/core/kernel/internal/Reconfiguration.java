@@ -107,8 +107,9 @@ final class Reconfiguration {
     /**
      * Runs {@code action} at a boundary of {@code shell} where it is quiescent (it awaits no
      * outcome of its requests; if {@code drains}, no message of another component is queued for
-     * it either: see {@link SettleQueue}), or at the first boundary after {@code settleWait} (a timer makes one if the
-     * component is idle then); {@code done} says when no further try is needed.
+     * it either: see {@link SettleQueue}), or at the first boundary after {@code settleWait} (a
+     * timer makes one if the component is idle then); {@code done} says when no further try is
+     * needed.
      */
     private void whenSettled(LocalShell shell, Runnable action, Duration settleWait, boolean drains,
                              CompletableFuture<?> done) {
