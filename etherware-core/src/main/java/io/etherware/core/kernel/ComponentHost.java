@@ -32,7 +32,8 @@ public interface ComponentHost extends Kernel {
      * @return a future that completes at the boundary: at once on the calling thread if the
      *         component is idle, else on the dispatcher thread that ends its current handling;
      *         failed with an {@link IllegalStateException} if the component is still arriving by
-     *         migration ({@link #addHeld}, not yet {@link #admit admitted})
+     *         migration ({@link #addHeld}, not yet {@link #admit admitted}), or was removed before
+     *         the boundary came
      * @throws ProfileResolutionException if the profile does not resolve
      * @throws IllegalArgumentException   if it resolves to a component of another node
      */

@@ -158,6 +158,7 @@ class QuiescentHoldTest {
             assertEquals(List.of("first", "second", "second's logic"), order);
         }
     }
+
     /** One dispatcher, its thread held by a blocker's handling, a message for {@code REQUESTER} queued behind it. */
     private EtherwareNode queuedBehindABlocker(String nodeId, CountDownLatch unblock) {
         var node = EtherwareNode.builder().nodeId(nodeId).scheduler(() -> MultiDispatcherScheduler.roundRobin(1))
@@ -225,6 +226,20 @@ class QuiescentHoldTest {
             assertEquals(atHold, handled.size(), "handled after the hold");
             node.release(REQUESTER);
             Await.until("it goes on after the release", () -> handled.size() > atHold + 2);
+        }
+    }
+
+    @Test
+    void shouldFailAHoldStillWaitingWhenTheComponentIsRemoved() throws Exception {
+        var unblock = new CountDownLatch(1);
+        try (var node = queuedBehindABlocker("quiescent-removed", unblock)) {
+            CompletableFuture<Void> held = node.holdAsync(REQUESTER, Duration.ofSeconds(30));
+            assertFalse(held.isDone(), "held with a message queued for it");
+            node.remove(REQUESTER);
+            unblock.countDown();
+            var failure = assertThrows(java.util.concurrent.ExecutionException.class,
+                    () -> held.get(30, TimeUnit.SECONDS));
+            assertTrue(failure.getCause() instanceof IllegalStateException, () -> "failed with " + failure.getCause());
         }
     }
 }

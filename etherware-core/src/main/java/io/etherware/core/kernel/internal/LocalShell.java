@@ -241,12 +241,21 @@ public final class LocalShell implements Shell {
         settling.requestSettled();
     }
 
-    /** Owner, at a boundary: holds now and completes {@code held}, unless it is done already. */
+    /**
+     * Owner, at a boundary: holds now and completes {@code held}, unless it is done already; fails
+     * it if the component was removed meanwhile (a hold then would keep the jobs still queued for
+     * it at a gate no profile leads to, for good).
+     */
     void hold(CompletableFuture<Void> held) {
-        if (!held.isDone()) {
-            gate.hold();
-            held.complete(null);
+        if (held.isDone()) {
+            return;
         }
+        if (removed) {
+            held.completeExceptionally(new IllegalStateException("'" + name + "' was removed before it could be held"));
+            return;
+        }
+        gate.hold();
+        held.complete(null);
     }
 
     /** See {@link SettleQueue#whenSettled}. */
