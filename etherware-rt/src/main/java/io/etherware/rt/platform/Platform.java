@@ -3,6 +3,7 @@ package io.etherware.rt.platform;
 import io.etherware.rt.platform.internal.Errno;
 import io.etherware.rt.platform.internal.LinuxNative;
 import io.etherware.rt.platform.internal.NativeResult;
+import io.etherware.rt.platform.internal.RealtimeBudget;
 import io.etherware.rt.platform.internal.RefusalAdvice;
 import io.etherware.rt.platform.internal.RefusalWarnings;
 import java.util.ArrayList;
@@ -126,7 +127,9 @@ public final class Platform {
                 int osPolicy = osPolicy(requested.policy());
                 refusals.add(refusal("thread priority", requested.toString(), result.errno(),
                         RefusalAdvice.forPolicy(requested, result.errno(), LinuxNative.realtimePriorityLimit(),
-                                LinuxNative.priorityMin(osPolicy).value(), LinuxNative.priorityMax(osPolicy).value())));
+                                LinuxNative.priorityMin(osPolicy).value(), LinuxNative.priorityMax(osPolicy).value(),
+                                result.errno() == Errno.EPERM ? RealtimeBudget.ofCurrentThread()
+                                        : RealtimeBudget.UNKNOWN)));
             }
         }
         return new ThreadGrant(Thread.currentThread().getName(), LinuxNative.currentThreadId(), requested,

@@ -21,6 +21,30 @@ public final class RefusalAdvice {
      */
     public static String forPolicy(ThreadPolicy requested, int errno, long[] rtprioLimit, int minPriority,
                                    int maxPriority) {
+        return forPolicy(requested, errno, rtprioLimit, minPriority, maxPriority, RealtimeBudget.UNKNOWN);
+    }
+
+    /**
+     * Advice for a refused {@code sched_setscheduler}, knowing the thread's privilege and cgroup.
+     * A privileged thread (CAP_SYS_NICE, as root) refused with EPERM is refused by its cgroup's
+     * real-time budget, not by a limit: telling it to run as root would be wrong.
+     *
+     * @param budget what {@link RealtimeBudget#ofCurrentThread()} read for the refused thread
+     * @see #forPolicy(ThreadPolicy, int, long[], int, int)
+     */
+    public static String forPolicy(ThreadPolicy requested, int errno, long[] rtprioLimit, int minPriority,
+                                   int maxPriority, RealtimeBudget budget) {
+        if (errno == Errno.EPERM && budget.emptyCpuGroup().isPresent()) {
+            String group = budget.emptyCpuGroup().get();
+            return "the thread's cpu cgroup '" + group + "' has no real-time budget (cpu.rt_runtime_us=0) and no"
+                    + " privilege lifts that; start the JVM in a cgroup with one (e.g. the root: echo $$ >"
+                    + " /sys/fs/cgroup/cpu/cgroup.procs before exec) or give '" + group + "' cpu.rt_runtime_us > 0";
+        }
+        if (errno == Errno.EPERM && budget.capSysNice().orElse(false)) {
+            return "the thread holds CAP_SYS_NICE, so no limit refused it: look at its cgroup's real-time budget"
+                    + " (cpu.rt_runtime_us, on a kernel with RT group scheduling) or a seccomp or security policy of"
+                    + " the container";
+        }
         return switch (errno) {
             case Errno.EPERM -> {
                 String java = System.getProperty("java.home", "$JAVA_HOME") + "/bin/java";
