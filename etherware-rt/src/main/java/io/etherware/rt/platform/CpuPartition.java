@@ -3,6 +3,7 @@ package io.etherware.rt.platform;
 import io.etherware.rt.platform.internal.Errno;
 import io.etherware.rt.platform.internal.LinuxNative;
 import io.etherware.rt.platform.internal.NativeResult;
+import io.etherware.rt.platform.internal.OrdinaryCpuGroup;
 import io.etherware.rt.platform.internal.RefusalAdvice;
 import java.io.IOException;
 import java.nio.file.Files;
@@ -43,6 +44,12 @@ import org.slf4j.LoggerFactory;
  * #threadsMovedBack()} counts them. A thread the platform placed on a real-time CPU itself (a
  * real-time request, or an explicit request for those CPUs) is left alone, even where its real-time
  * policy was refused.
+ *
+ * <p>Where it can (cgroup v1 {@code cpu} hierarchy, root or CAP_SYS_ADMIN), the partition also
+ * puts the ordinary threads it moves in a cpu cgroup of the JVM's own ({@link #ordinaryCpuGroup()}),
+ * so that a safepoint does not wait while the kernel runs another JVM's threads on the ordinary
+ * CPUs. The threads the platform configures stay out of it, and one born in it that asks for a
+ * real-time policy is moved out first: a new group has no real-time budget.
  *
  * <p>The real-time CPUs need not be among the opening thread's CPUs: a JVM started by a partitioned
  * one inherits only the ordinary CPUs, and still puts its real-time threads on the real-time ones.
@@ -153,6 +160,14 @@ public final class CpuPartition implements AutoCloseable {
                 } else {
                     current.placed.remove(tid);
                 }
+                // A thread the platform configures may run, or be lent, a real-time policy: it stays
+                // where one is allowed, never in the ordinary cpu group.
+                current.configured.add(tid);
+                if (current.group != null) {
+                    current.group.addRealtime(tid);
+                }
+            } else if (requested.isRealtime()) {
+                OrdinaryCpuGroup.leaveInherited(LinuxNative.currentThreadId());
             }
             return new Placed(resolved, resolved.isInherit() ? null : LinuxNative.setAffinity(0, resolved.cpus()));
         }
@@ -189,6 +204,21 @@ public final class CpuPartition implements AutoCloseable {
      */
     public List<PlatformRefusal> refusals() {
         return shared.refusals;
+    }
+
+    /**
+     * The cpu cgroup of the JVM's ordinary threads, where one could be made: a cgroup v1 {@code cpu}
+     * group {@code etherware-<pid>} under the nearest group with a real-time budget, where the
+     * threads the partition moves to the ordinary CPUs also go (not those the platform configures,
+     * which may run or be lent a real-time policy, which that group cannot grant). Two JVMs on one
+     * machine then no longer wait for each other's threads to reach a safepoint (docs/REALTIME.md,
+     * section 4). Made and removed with the partition; where it cannot be (cgroup v2, no
+     * permission), {@link #describe()} says why and the partition holds without it.
+     *
+     * @return the group's path in the cpu hierarchy, e.g. {@code /etherware-4242}; empty where none
+     */
+    public java.util.Optional<String> ordinaryCpuGroup() {
+        return shared.group == null ? java.util.Optional.empty() : java.util.Optional.of(shared.group.ordinaryGroup());
     }
 
     /**
@@ -244,6 +274,13 @@ public final class CpuPartition implements AutoCloseable {
         final Set<Integer> placed = new HashSet<>();
         /** Where each thread the first sweep moved was before, by kernel thread id. */
         final Map<Integer, int[]> previous = new HashMap<>();
+        /** Kernel thread ids the platform configured, on any CPUs: never put in the ordinary group. */
+        final Set<Integer> configured = new HashSet<>();
+        /** Kernel thread ids put in the ordinary group (or born there). */
+        final Set<Integer> grouped = new HashSet<>();
+        /** The ordinary threads' cpu group, or null where none could be made ({@link #groupNote}). */
+        final OrdinaryCpuGroup group;
+        final String groupNote;
         final Thread keeper;
         int holders = 1;
         volatile boolean stopped;
@@ -252,6 +289,9 @@ public final class CpuPartition implements AutoCloseable {
             this.realtimeCpus = realtimeCpus;
             this.ordinaryCpus = ordinaryCpus;
             this.allCpus = allCpus;
+            OrdinaryCpuGroup.Outcome made = OrdinaryCpuGroup.create();
+            this.group = made.group().orElse(null);
+            this.groupNote = group != null ? "ordinary threads in " + group : "no cpu group (" + made.reason() + ")";
             var found = new ArrayList<PlatformRefusal>();
             this.threadsMovedAtStart = sweep(true, found);
             this.refusals = List.copyOf(found);
@@ -267,6 +307,8 @@ public final class CpuPartition implements AutoCloseable {
             this.refusals = List.of(refusal);
             this.threadsMovedAtStart = 0;
             this.keeper = null;
+            this.group = null;
+            this.groupNote = "";
         }
 
         static Shared inert(CpuSet realtimeCpus, PlatformRefusal refusal) {
@@ -279,7 +321,7 @@ public final class CpuPartition implements AutoCloseable {
             }
             return "cpu partition: real-time threads on " + realtimeCpus + ", every other thread on " + ordinaryCpus
                     + " (" + threadsMovedAtStart + " moved at start, " + refusals.size() + " refused, "
-                    + movedBack.get() + " moved back since)";
+                    + movedBack.get() + " moved back since); " + groupNote;
         }
 
         private void keep() {
@@ -321,7 +363,11 @@ public final class CpuPartition implements AutoCloseable {
             }
             previous.clear();
             placed.clear();
-            LOG.info("cpu partition {} ended; {} threads back on the CPUs they had", realtimeCpus, restored);
+            configured.clear();
+            grouped.clear();
+            int regrouped = group != null ? group.close() : 0;
+            LOG.info("cpu partition {} ended; {} threads back on the CPUs they had{}", realtimeCpus, restored,
+                    group != null ? ", " + regrouped + " back in cpu group " + group.realtimeGroup() : "");
         }
 
         /**
@@ -340,11 +386,16 @@ public final class CpuPartition implements AutoCloseable {
             var alive = new HashSet<>(tids);
             placed.retainAll(alive);
             previous.keySet().retainAll(alive);
+            configured.retainAll(alive);
+            grouped.retainAll(alive);
             int moved = 0;
             for (int tid : tids) {
                 NativeResult policy = LinuxNative.getScheduler(tid);
                 if (!policy.ok() || isRealtime(policy) || placed.contains(tid)) {
                     continue; // ended meanwhile, real-time, or placed on request: its CPUs are its own
+                }
+                if (group != null && !configured.contains(tid) && grouped.add(tid) && !group.addOrdinary(tid)) {
+                    grouped.remove(tid); // ended meanwhile, or refused: tried again at the next sweep
                 }
                 int[] affinity = LinuxNative.getAffinity(tid);
                 if (affinity == null || Arrays.stream(affinity).noneMatch(realtimeCpus::contains)) {

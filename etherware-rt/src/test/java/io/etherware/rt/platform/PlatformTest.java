@@ -204,6 +204,49 @@ class PlatformTest {
     }
 
     @Test
+    void shouldPutOrdinaryThreadsInACpuGroupOfTheirOwnAndGrantRealtimeToThreadsBornThere() throws Exception {
+        Split split = lastCpuRealtimeOrSkip();
+        var platform = Platform.current();
+        String group;
+        ThreadGrant bornThere;
+        String[] after = new String[1];
+        try (CpuPartition partition = platform.partitionCpus(split.realtime())) {
+            org.junit.jupiter.api.Assumptions.assumeTrue(partition.ordinaryCpuGroup().isPresent(),
+                    () -> "no cpu group here: " + partition.describe());
+            group = partition.ordinaryCpuGroup().get();
+            assertEquals(group, cpuGroupOf("thread-self"), "the opener, an ordinary thread, is in the group");
+            // A thread born in the group asks for a real-time policy: the group has no real-time
+            // budget, so the platform moves it out first, or the kernel refuses (EPERM).
+            bornThere = onFreshThread(() -> {
+                ThreadGrant grant = platform.configureCurrentThreadWithoutWarning(ThreadPolicy.fifo(1),
+                        CpuSet.inherit());
+                after[0] = cpuGroupOf("thread-self");
+                return grant;
+            });
+        }
+        assertTrue(bornThere.refusals().isEmpty(), bornThere.toLine());
+        assertTrue(bornThere.granted().isRealtime(), bornThere.toLine());
+        assertTrue(!group.equals(after[0]), "moved out of the ordinary group: " + after[0]);
+        assertTrue(!group.equals(cpuGroupOf("thread-self")), "the opener is out of the group after the close");
+        assertTrue(!java.nio.file.Files.exists(java.nio.file.Path.of("/sys/fs/cgroup/cpu", group.substring(1))),
+                "the group is gone with the partition");
+    }
+
+    private static String cpuGroupOf(String task) {
+        try {
+            for (String line : java.nio.file.Files.readAllLines(java.nio.file.Path.of("/proc", task, "cgroup"))) {
+                String[] fields = line.split(":", 3);
+                if (java.util.List.of(fields[1].split(",")).contains("cpu")) {
+                    return fields[2];
+                }
+            }
+            return "";
+        } catch (java.io.IOException e) {
+            throw new java.io.UncheckedIOException(e);
+        }
+    }
+
+    @Test
     void shouldReadTheSameThreadIdFromProcAsFromGettid() throws Exception {
         org.junit.jupiter.api.Assumptions.assumeTrue(io.etherware.rt.platform.internal.LinuxNative.isAvailable(),
                 "Linux only");
