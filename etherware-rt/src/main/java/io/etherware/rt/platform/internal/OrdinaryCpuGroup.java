@@ -49,8 +49,7 @@ public final class OrdinaryCpuGroup {
      *         whole processes only), no permission, or a group of that name already there
      */
     public static Outcome create() {
-        Optional<Path> mounted = CPU_HIERARCHIES.stream().filter(path -> Files.exists(path.resolve("tasks")))
-                .findFirst();
+        Optional<Path> mounted = cpuHierarchy();
         if (mounted.isEmpty()) {
             return new Outcome(Optional.empty(), "no cgroup v1 cpu hierarchy under /sys/fs/cgroup");
         }
@@ -76,6 +75,16 @@ public final class OrdinaryCpuGroup {
             return new Outcome(Optional.empty(), "cannot make cpu group " + dir + ": " + e);
         }
         return new Outcome(Optional.of(new OrdinaryCpuGroup(hierarchy, realtime, ordinary)), "");
+    }
+
+    /** {@return where the cgroup v1 hierarchy with the cpu controller is mounted, if it is} */
+    static Optional<Path> cpuHierarchy() {
+        return CPU_HIERARCHIES.stream().filter(path -> Files.exists(path.resolve("tasks"))).findFirst();
+    }
+
+    /** {@return the directory of {@code group}, a path in the hierarchy such as {@code /a/b}} */
+    static Path dir(Path hierarchy, String group) {
+        return group.equals("/") ? hierarchy : hierarchy.resolve(group.substring(1));
     }
 
     /** Removes the groups of JVMs that ended without closing their partition (empty ones only). */
@@ -119,10 +128,6 @@ public final class OrdinaryCpuGroup {
         return slash <= 0 ? "/" : group.substring(0, slash);
     }
 
-    private static Path dir(Path hierarchy, String group) {
-        return group.equals("/") ? hierarchy : hierarchy.resolve(group.substring(1));
-    }
-
     /** {@return the group the ordinary threads go to, a path in the cpu hierarchy} */
     public String ordinaryGroup() {
         return ordinaryGroup;
@@ -143,8 +148,7 @@ public final class OrdinaryCpuGroup {
      */
     public static boolean leaveInherited(int tid) {
         try {
-            Optional<Path> mounted = CPU_HIERARCHIES.stream().filter(path -> Files.exists(path.resolve("tasks")))
-                    .findFirst();
+            Optional<Path> mounted = cpuHierarchy();
             Optional<String> own = RealtimeBudget.cpuGroup(Files.readAllLines(Path.of("/proc/self/task",
                     Integer.toString(tid), "cgroup")));
             if (mounted.isEmpty() || own.isEmpty() || !own.get().matches(".*/etherware-[0-9]+")) {

@@ -23,9 +23,6 @@ public record RealtimeBudget(Optional<Boolean> capSysNice, Optional<String> empt
 
     /** CAP_SYS_NICE's bit in the capability sets (capability.h). */
     static final int CAP_SYS_NICE = 23;
-    private static final List<Path> CPU_HIERARCHIES = List.of(Path.of("/sys/fs/cgroup/cpu"),
-            Path.of("/sys/fs/cgroup/cpu,cpuacct"), Path.of("/sys/fs/cgroup/cpuacct,cpu"));
-
     /** Nothing known: the advice falls back to the privilege and the limit. */
     public static final RealtimeBudget UNKNOWN = new RealtimeBudget(Optional.empty(), Optional.empty());
 
@@ -64,16 +61,15 @@ public record RealtimeBudget(Optional<Boolean> capSysNice, Optional<String> empt
     }
 
     private static boolean hasNoRuntime(String group) {
-        for (Path hierarchy : CPU_HIERARCHIES) {
-            Path runtime = hierarchy.resolve(group.replaceFirst("^/", "")).resolve("cpu.rt_runtime_us");
-            try {
-                if (Files.isReadable(runtime)) {
-                    return Files.readString(runtime).strip().equals("0");
-                }
-            } catch (IOException e) {
-                return false;
-            }
+        Optional<Path> hierarchy = OrdinaryCpuGroup.cpuHierarchy();
+        if (hierarchy.isEmpty()) {
+            return false;
         }
-        return false;
+        Path runtime = OrdinaryCpuGroup.dir(hierarchy.get(), group).resolve("cpu.rt_runtime_us");
+        try {
+            return Files.isReadable(runtime) && Files.readString(runtime).strip().equals("0");
+        } catch (IOException e) {
+            return false;
+        }
     }
 }
