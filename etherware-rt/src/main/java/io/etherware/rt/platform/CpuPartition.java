@@ -45,11 +45,13 @@ import org.slf4j.LoggerFactory;
  * real-time request, or an explicit request for those CPUs) is left alone, even where its real-time
  * policy was refused.
  *
- * <p>Where it can (cgroup v1 {@code cpu} hierarchy, root or CAP_SYS_ADMIN), the partition also
- * puts the ordinary threads it moves in a cpu cgroup of the JVM's own ({@link #ordinaryCpuGroup()}),
- * so that a safepoint does not wait while the kernel runs another JVM's threads on the ordinary
- * CPUs. The threads the platform configures stay out of it, and one born in it that asks for a
- * real-time policy is moved out first: a new group has no real-time budget.
+ * <p>Where it can (a cgroup v1 {@code cpu} hierarchy whose files the process may write, as root),
+ * the partition also puts the JVM's ordinary threads in a cpu cgroup of its own ({@link
+ * #ordinaryCpuGroup()}), so that a safepoint rarely waits while the kernel runs another JVM's
+ * threads on the ordinary CPUs. The threads the platform configures stay out of it, and one born in
+ * it is moved out when the platform configures it: a new group has no real-time budget. A thread
+ * that sets a real-time policy without the platform (JNI, {@code chrt -p}), or a non-Java process
+ * started from an ordinary thread, is refused in the group.
  *
  * <p>The real-time CPUs need not be among the opening thread's CPUs: a JVM started by a partitioned
  * one inherits only the ordinary CPUs, and still puts its real-time threads on the real-time ones.
@@ -75,6 +77,13 @@ public final class CpuPartition implements AutoCloseable {
     /** Guards {@link #current} and everything every {@link Shared} does to thread affinities. */
     private static final Object LOCK = new Object();
     private static Shared current;
+    /**
+     * Kernel thread ids the platform configured, in this JVM, partition or not: never put in the
+     * ordinary cpu group (they may run, or be lent, a real-time policy, which it cannot grant).
+     */
+    private static final Set<Integer> CONFIGURED = new HashSet<>();
+    /** Above this many, {@link #CONFIGURED} forgets the threads that ended. */
+    private static final int CONFIGURED_PRUNE_AT = 1024;
 
     private final Shared shared;
     private final AtomicBoolean closed;
@@ -160,17 +169,38 @@ public final class CpuPartition implements AutoCloseable {
                 } else {
                     current.placed.remove(tid);
                 }
-                // A thread the platform configures may run, or be lent, a real-time policy: it stays
-                // where one is allowed, never in the ordinary cpu group.
-                current.configured.add(tid);
-                if (current.group != null) {
-                    current.group.addRealtime(tid);
-                }
-            } else if (requested.isRealtime()) {
-                OrdinaryCpuGroup.leaveInherited(LinuxNative.currentThreadId());
             }
+            releaseForRealtimeLocked(); // a configured thread may run, or be lent, a real-time policy
             return new Placed(resolved, resolved.isInherit() ? null : LinuxNative.setAffinity(0, resolved.cpus()));
         }
+    }
+
+    /**
+     * For the calling thread that the platform configures, or whose real-time request the kernel
+     * refused: marks it as one the keeper never puts in the ordinary cpu group (it may run, or be
+     * lent, a real-time policy, which that group cannot grant), and takes it out of that group, or
+     * out of one of ours it was born in (a partitioned parent JVM's), if it is in one.
+     *
+     * @return whether it moved the thread, so a refused request is worth asking again
+     */
+    static boolean releaseForRealtime() {
+        synchronized (LOCK) {
+            return releaseForRealtimeLocked();
+        }
+    }
+
+    private static boolean releaseForRealtimeLocked() {
+        if (!LinuxNative.isAvailable()) {
+            return false;
+        }
+        if (CONFIGURED.size() >= CONFIGURED_PRUNE_AT) {
+            CONFIGURED.retainAll(new HashSet<>(Shared.tasks()));
+        }
+        CONFIGURED.add(LinuxNative.currentThreadId());
+        if (current != null && current.group != null) {
+            return current.group.releaseCurrent();
+        }
+        return OrdinaryCpuGroup.leaveInherited();
     }
 
     /** What {@link #place} asked of the OS and got. */
@@ -208,17 +238,19 @@ public final class CpuPartition implements AutoCloseable {
 
     /**
      * The cpu cgroup of the JVM's ordinary threads, where one could be made: a cgroup v1 {@code cpu}
-     * group {@code etherware-<pid>} under the nearest group with a real-time budget, where the
-     * threads the partition moves to the ordinary CPUs also go (not those the platform configures,
-     * which may run or be lent a real-time policy, which that group cannot grant). Two JVMs on one
-     * machine then no longer wait for each other's threads to reach a safepoint (docs/REALTIME.md,
-     * section 4). Made and removed with the partition; where it cannot be (cgroup v2, no
-     * permission), {@link #describe()} says why and the partition holds without it.
+     * group {@code etherware-<pid>} under the process's own group, where the keeper puts every
+     * ordinary thread the platform did not configure (those may run or be lent a real-time policy,
+     * which that group cannot grant). Two JVMs on one machine then mostly stop waiting for each
+     * other's threads to reach a safepoint (docs/REALTIME.md, section 4). Made and removed with the
+     * partition; where it cannot be (cgroup v2, no permission, a process group without a real-time
+     * budget), {@link #describe()} says why and the partition holds without it.
      *
-     * @return the group's path in the cpu hierarchy, e.g. {@code /etherware-4242}; empty where none
+     * @return the group's path in the cpu hierarchy, e.g. {@code /etherware-4242}; empty where none,
+     *         or once the partition has closed
      */
     public java.util.Optional<String> ordinaryCpuGroup() {
-        return shared.group == null ? java.util.Optional.empty() : java.util.Optional.of(shared.group.ordinaryGroup());
+        return shared.group == null || shared.stopped ? java.util.Optional.empty()
+                : java.util.Optional.of(shared.group.ordinaryGroup());
     }
 
     /**
@@ -274,9 +306,7 @@ public final class CpuPartition implements AutoCloseable {
         final Set<Integer> placed = new HashSet<>();
         /** Where each thread the first sweep moved was before, by kernel thread id. */
         final Map<Integer, int[]> previous = new HashMap<>();
-        /** Kernel thread ids the platform configured, on any CPUs: never put in the ordinary group. */
-        final Set<Integer> configured = new HashSet<>();
-        /** Kernel thread ids put in the ordinary group (or born there). */
+        /** Kernel thread ids the keeper put in the ordinary group. */
         final Set<Integer> grouped = new HashSet<>();
         /** The ordinary threads' cpu group, or null where none could be made ({@link #groupNote}). */
         final OrdinaryCpuGroup group;
@@ -363,11 +393,15 @@ public final class CpuPartition implements AutoCloseable {
             }
             previous.clear();
             placed.clear();
-            configured.clear();
             grouped.clear();
-            int regrouped = group != null ? group.close() : 0;
+            OrdinaryCpuGroup.Closed regrouped = group != null ? group.close() : null;
             LOG.info("cpu partition {} ended; {} threads back on the CPUs they had{}", realtimeCpus, restored,
-                    group != null ? ", " + regrouped + " back in cpu group " + group.realtimeGroup() : "");
+                    regrouped != null ? ", " + regrouped.threadsMoved() + " back in cpu group " + group.realtimeGroup()
+                            : "");
+            if (regrouped != null && !regrouped.removed()) {
+                LOG.warn("cpu partition {}: cpu group {} could not be removed (threads kept being born in it);"
+                        + " the next partition of this JVM reuses it", realtimeCpus, group.ordinaryGroup());
+            }
         }
 
         /**
@@ -386,7 +420,7 @@ public final class CpuPartition implements AutoCloseable {
             var alive = new HashSet<>(tids);
             placed.retainAll(alive);
             previous.keySet().retainAll(alive);
-            configured.retainAll(alive);
+            CONFIGURED.retainAll(alive);
             grouped.retainAll(alive);
             int moved = 0;
             for (int tid : tids) {
@@ -394,7 +428,7 @@ public final class CpuPartition implements AutoCloseable {
                 if (!policy.ok() || isRealtime(policy) || placed.contains(tid)) {
                     continue; // ended meanwhile, real-time, or placed on request: its CPUs are its own
                 }
-                if (group != null && !configured.contains(tid) && grouped.add(tid) && !group.addOrdinary(tid)) {
+                if (group != null && !CONFIGURED.contains(tid) && grouped.add(tid) && !group.addOrdinary(tid)) {
                     grouped.remove(tid); // ended meanwhile, or refused: tried again at the next sweep
                 }
                 int[] affinity = LinuxNative.getAffinity(tid);
@@ -421,7 +455,7 @@ public final class CpuPartition implements AutoCloseable {
         }
 
         /** This process's kernel thread ids now; empty when they cannot be listed. */
-        private static List<Integer> tasks() {
+        static List<Integer> tasks() {
             try (var entries = Files.list(Path.of("/proc/self/task"))) {
                 return entries.map(task -> Integer.parseInt(task.getFileName().toString())).toList();
             } catch (IOException | RuntimeException e) {

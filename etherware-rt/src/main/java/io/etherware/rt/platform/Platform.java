@@ -123,6 +123,12 @@ public final class Platform {
             int flags = requested.isRealtime() ? LinuxNative.SCHED_RESET_ON_FORK : 0;
             NativeResult result = LinuxNative.setScheduler(0, osPolicy(requested.policy()) | flags,
                     requested.priority());
+            if (!result.ok() && result.errno() == Errno.EPERM && requested.isRealtime()
+                    && CpuPartition.releaseForRealtime()) {
+                // Put in a partition's ordinary cpu group by a partition that opened after place():
+                // out of it now, and asked again.
+                result = LinuxNative.setScheduler(0, osPolicy(requested.policy()) | flags, requested.priority());
+            }
             if (!result.ok()) {
                 int osPolicy = osPolicy(requested.policy());
                 refusals.add(refusal("thread priority", requested.toString(), result.errno(),

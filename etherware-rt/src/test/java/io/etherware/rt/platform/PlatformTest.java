@@ -210,10 +210,34 @@ class PlatformTest {
         String group;
         ThreadGrant bornThere;
         String[] after = new String[1];
+        // A thread the platform configured before the partition opened (an ordinary dispatcher,
+        // say): the partition must leave it out of the group, where a lent priority would be refused.
+        var configuredEarlier = new java.util.concurrent.CompletableFuture<String>();
+        var release = new java.util.concurrent.CountDownLatch(1);
+        Thread earlier = Thread.ofPlatform().start(() -> {
+            platform.configureCurrentThreadWithoutWarning(ThreadPolicy.NON_REALTIME, CpuSet.inherit());
+            try {
+                configuredEarlier.complete("configured");
+                release.await();
+                configuredEarlier.obtrudeValue(cpuGroupOf("thread-self"));
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+        });
+        configuredEarlier.get();
         try (CpuPartition partition = platform.partitionCpus(split.realtime())) {
-            org.junit.jupiter.api.Assumptions.assumeTrue(partition.ordinaryCpuGroup().isPresent(),
-                    () -> "no cpu group here: " + partition.describe());
+            java.util.Optional<java.nio.file.Path> hierarchy =
+                    io.etherware.rt.platform.internal.OrdinaryCpuGroup.cpuHierarchy();
+            boolean expected = hierarchy.isPresent() && java.nio.file.Files.isWritable(hierarchy.get())
+                    && io.etherware.rt.platform.internal.OrdinaryCpuGroup
+                            .realtimeHome(hierarchy.get(), cpuGroupOf("self")).isPresent();
+            org.junit.jupiter.api.Assumptions.assumeTrue(expected || partition.ordinaryCpuGroup().isPresent(),
+                    () -> "no writable cgroup v1 cpu hierarchy here: " + partition.describe());
+            assertTrue(partition.ordinaryCpuGroup().isPresent(), partition.describe());
             group = partition.ordinaryCpuGroup().get();
+            release.countDown();
+            earlier.join();
+            assertTrue(!group.equals(configuredEarlier.get()), "configured before the partition: left out");
             assertEquals(group, cpuGroupOf("thread-self"), "the opener, an ordinary thread, is in the group");
             // A thread born in the group asks for a real-time policy: the group has no real-time
             // budget, so the platform moves it out first, or the kernel refuses (EPERM).
@@ -228,7 +252,8 @@ class PlatformTest {
         assertTrue(bornThere.granted().isRealtime(), bornThere.toLine());
         assertTrue(!group.equals(after[0]), "moved out of the ordinary group: " + after[0]);
         assertTrue(!group.equals(cpuGroupOf("thread-self")), "the opener is out of the group after the close");
-        assertTrue(!java.nio.file.Files.exists(java.nio.file.Path.of("/sys/fs/cgroup/cpu", group.substring(1))),
+        java.nio.file.Path hierarchy = io.etherware.rt.platform.internal.OrdinaryCpuGroup.cpuHierarchy().orElseThrow();
+        assertTrue(!java.nio.file.Files.exists(hierarchy.resolve(group.substring(1))),
                 "the group is gone with the partition");
     }
 
