@@ -12,12 +12,10 @@ import java.io.UncheckedIOException;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.Arrays;
-
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicReference;
-import java.util.function.Supplier;
 import org.junit.jupiter.api.Assumptions;
 import org.junit.jupiter.api.Test;
 
@@ -54,7 +52,7 @@ class CpuPartitionGroupTest {
             assertEquals(group, cpuGroupOf("thread-self"), "the opener, an ordinary thread, is in the group");
             // A thread born in the group asks for a real-time policy: the group has no real-time
             // budget, so the platform moves it out first, or the kernel refuses (EPERM).
-            bornThere = onFreshThread(() -> {
+            bornThere = PlatformTest.onFreshThread(() -> {
                 ThreadGrant grant = platform.configureCurrentThreadWithoutWarning(ThreadPolicy.fifo(1),
                         CpuSet.inherit());
                 after[0] = cpuGroupOf("thread-self");
@@ -76,7 +74,7 @@ class CpuPartitionGroupTest {
             String group = groupOrSkip(partition);
             // Started by a thread the platform configured (outside the group), as a pool thread
             // started from a dispatcher is: born outside, the keeper puts it in within a sweep or two.
-            String seen = onFreshThread(() -> {
+            String seen = PlatformTest.onFreshThread(() -> {
                 platform.configureCurrentThreadWithoutWarning(ThreadPolicy.NON_REALTIME, CpuSet.inherit());
                 var late = new AtomicReference<String>();
                 Thread child = Thread.ofPlatform().start(() -> {
@@ -104,7 +102,7 @@ class CpuPartitionGroupTest {
         Path inherited = hierarchy.resolve("etherware-" + deadPid);
         Files.createDirectories(inherited);
         try {
-            String[] groups = onFreshThread(() -> {
+            String[] groups = PlatformTest.onFreshThread(() -> {
                 write(inherited.resolve("tasks"), "0");
                 String before = cpuGroupOf("thread-self");
                 ThreadGrant grant = Platform.current().configureCurrentThreadWithoutWarning(ThreadPolicy.fifo(1),
@@ -193,23 +191,6 @@ class CpuPartitionGroupTest {
         } catch (IOException e) {
             throw new UncheckedIOException(e);
         }
-    }
-
-    private static <T> T onFreshThread(Supplier<T> action) throws InterruptedException {
-        var result = new AtomicReference<T>();
-        var failure = new AtomicReference<Throwable>();
-        Thread thread = Thread.ofPlatform().start(() -> {
-            try {
-                result.set(action.get());
-            } catch (Throwable t) {
-                failure.set(t);
-            }
-        });
-        thread.join();
-        if (failure.get() != null) {
-            throw new AssertionError("action failed on its thread", failure.get());
-        }
-        return result.get();
     }
 
     private static void awaitQuietly(CountDownLatch latch) {

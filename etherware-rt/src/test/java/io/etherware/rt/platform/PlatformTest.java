@@ -134,7 +134,8 @@ class PlatformTest {
         assertEquals(platform.isAvailable(), platform.currentThreadId() > 0);
     }
 
-    private static <T> T onFreshThread(Supplier<T> action) throws InterruptedException {
+    /** Runs {@code action} on a new platform thread and returns its result; its failure fails the caller. */
+    static <T> T onFreshThread(Supplier<T> action) throws InterruptedException {
         var result = new AtomicReference<T>();
         var failure = new AtomicReference<Throwable>();
         Thread thread = Thread.ofPlatform().start(() -> {
