@@ -87,6 +87,8 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
     public static final int DEFAULT_MAX_FRAME_BYTES = 1 << 20;
     /** Smallest {@link #maxFrameBytes}: room for a handshake and a small message. */
     public static final int MIN_FRAME_BYTES = 4096;
+    /** Smallest document limit of a {@link #codec()} given: what peers require of a node's frames. */
+    public static final int MIN_CODEC_DOCUMENT_BYTES = 1024;
 
     /**
      * The codec a messenger for {@code kernel} uses: {@link #codec()} if one was given, else one over
@@ -114,6 +116,11 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
         peers = List.copyOf(Objects.requireNonNull(peers, "peers=null"));
         Objects.requireNonNull(connectionFactory, "connectionFactory=null: use ConnectionFactory.plain()");
         NetworkConfigChecks.frames(maxFrameBytes, queueCapacity, windowMessages);
+        if (codec != null && codec.maxDocumentBytes() < MIN_CODEC_DOCUMENT_BYTES) {
+            throw new IllegalArgumentException("codec.maxDocumentBytes()=" + codec.maxDocumentBytes() + " must be at"
+                    + " least " + MIN_CODEC_DOCUMENT_BYTES + ": a node tells its peers the largest message it takes,"
+                    + " and peers refuse a node that takes less");
+        }
         NetworkConfigChecks.heartbeats(heartbeatIntervalNs, heartbeatTimeoutNs);
         NetworkConfigChecks.dialing(handshakeTimeoutNs, connectTimeoutNs, reconnectInitialBackoffNs,
                 reconnectMaxBackoffNs, reconnectJitter, peerDownGraceNs);
@@ -269,12 +276,15 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
          * How messages are encoded on the wire. Default: a {@link MessageCodec} with a document
          * limit of {@code maxFrameBytes - 64}, so every message that encodes fits a frame, over the
          * node's contents types ({@code Kernel.contentsTypes()}), made when the messenger starts.
+         * A codec with a lower limit lowers the largest frame the node says it takes in its HELLO,
+         * so that peers refuse a message too large for it at their sender, not on the wire.
          * A codec given here keeps its own registry: build it over the node's
          * ({@code MessageCodec.builder().contentsTypes(node.contentsTypes())}), or the kernel's
          * notices and the services' messages will not cross.
          *
          * @param value the codec, or null for the default; its contents types must include every
-         *              contents type sent across and match the peers'
+         *              contents type sent across and match the peers'; its document limit at least
+         *              {@link #MIN_CODEC_DOCUMENT_BYTES} (checked by {@link #build()})
          * @return this builder
          */
         public Builder codec(MessageCodec value) {

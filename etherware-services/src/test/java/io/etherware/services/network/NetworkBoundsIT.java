@@ -4,12 +4,15 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
+import io.etherware.core.codec.MessageCodec;
+import io.etherware.core.message.ContentsTypes;
 import io.etherware.core.message.Criticality;
 import io.etherware.core.message.Message;
 import io.etherware.core.message.MessageId;
 import io.etherware.core.message.Profile;
 import io.etherware.core.message.QoS;
 import io.etherware.core.message.Text;
+import io.etherware.core.time.NodeClock;
 import io.etherware.testkit.Await;
 import java.net.InetSocketAddress;
 import java.time.Duration;
@@ -125,6 +128,39 @@ class NetworkBoundsIT {
             assertTrue(!refusals.isEmpty(), "HIGH messages beyond the bound are refused");
             assertTrue(refusals.getFirst().getMessage().contains("maxQueuedBytesPerPeer=" + maxQueued),
                     refusals.getFirst().getMessage());
+        }
+    }
+
+    @Test
+    void shouldRefuseAtTheSenderAMessageLargerThanThePeersCodecTakesAndKeepTheConnection() throws Exception {
+        // b's codec takes 16 KiB documents, though its frames may be 64 KiB: b says so in its HELLO.
+        int documentLimit = 16 * 1024;
+        ContentsTypes bTypes = Num.register(new ContentsTypes());
+        MessageCodec smallCodec = MessageCodec.builder().contentsTypes(bTypes).maxDocumentBytes(documentLimit).build();
+        var received = new CopyOnWriteArrayList<String>();
+        try (var b = TestNode.start("b", NodeClock.system(), TestNode.config().maxFrameBytes(FRAME).codec(smallCodec),
+                node -> node.contentsTypes(bTypes));
+             var a = TestNode.start("a", TestNode.config().maxFrameBytes(FRAME).peer(b.address()))) {
+            b.node.add(SLOW, () -> (message, context) -> received.add(message.contentsAs(Text.class).text()));
+            assertTrue(a.net.awaitResolvable(SLOW, Duration.ofSeconds(30)));
+            long opened = a.net.stats().connectionsOpened();
+            var toB = a.net.routeTo("b");
+
+            // 20 KiB of text: within both nodes' frames and a's codec, over b's codec.
+            MessageId large = a.node.newMessageId();
+            var refused = assertThrows(IllegalStateException.class, () -> toB.deliver(new Message(SLOW, null, 0,
+                    QoS.of(Criticality.HIGH), new Text("x".repeat(20 * 1024)), large, null)));
+            assertTrue(refused.getMessage().contains("message " + large) && refused.getMessage().contains("node 'b'"),
+                    refused.getMessage());
+            toB.deliver(new Message(SLOW, null, 0, QoS.of(Criticality.HIGH), new Text("after"), a.node.newMessageId(),
+                    null));
+
+            Await.until("the next message arrived", () -> received.contains("after"));
+            assertEquals(List.of("after"), received);
+            assertEquals(opened, a.net.stats().connectionsOpened(), "no connection was replaced");
+            for (TestNode node : List.of(a, b)) {
+                assertEquals(0, node.net.stats().closes(CloseReason.MALFORMED_MESSAGE), node.net.stats().toString());
+            }
         }
     }
 

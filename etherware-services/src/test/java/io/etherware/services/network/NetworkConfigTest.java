@@ -5,6 +5,7 @@ import static org.junit.jupiter.api.Assertions.assertSame;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
+import io.etherware.core.codec.MessageCodec;
 import io.etherware.core.kernel.EtherwareNode;
 import java.time.Duration;
 import org.junit.jupiter.api.Test;
@@ -41,5 +42,14 @@ class NetworkConfigTest {
         assertSame(node.contentsTypes(), codec.contentsTypes());
         assertTrue(codec.contentsTypes().names().contains("undeliverable"), () -> codec.contentsTypes().names().toString());
         assertEquals(NetworkConfig.DEFAULT_MAX_FRAME_BYTES, NetworkConfig.builder().build().maxFrameBytes());
+    }
+
+    @Test
+    void shouldRefuseACodecWhoseDocumentsAreSmallerThanPeersRequire() {
+        var small = MessageCodec.builder().maxDocumentBytes(NetworkConfig.MIN_CODEC_DOCUMENT_BYTES - 1).build();
+        assertTrue(errorOf(NetworkConfig.builder().codec(small)).startsWith("codec.maxDocumentBytes()=1023 must be at"
+                + " least 1024"));
+        var enough = MessageCodec.builder().maxDocumentBytes(NetworkConfig.MIN_CODEC_DOCUMENT_BYTES).build();
+        assertSame(enough, NetworkConfig.builder().codec(enough).build().codec());
     }
 }

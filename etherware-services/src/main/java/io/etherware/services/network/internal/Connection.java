@@ -15,7 +15,9 @@ import javax.net.ssl.SSLException;
  * what its lane's {@link Link} has, most critical first, and flushes once per turn, so a burst
  * leaves in few system calls.
  *
- * <p>A dead or slow peer blocks only this connection's two threads; senders only ever queue.
+ * <p>A dead or slow peer blocks only this connection's two threads; a sender never waits for it:
+ * it writes its frame itself only while the connection is idle (its socket's buffer has room, see
+ * {@link Link}), and queues otherwise.
  *
  * <p>Thread-safety: the writer requests are guarded by the link's lock; {@link #close} may be
  * called from any thread, once takes effect.
@@ -124,7 +126,7 @@ final class Connection implements Runnable {
         writer = new FrameWriter(socket.getOutputStream());
         int lanes = context.lanes().size();
         writer.hello(new Frame.Hello(Frame.VERSION, context.nodeId(), context.incarnation(),
-                context.kernel().clock().epochNanos(), context.config().maxFrameBytes(), lanes, lane));
+                context.kernel().clock().epochNanos(), context.acceptedFrameBytes(), lanes, lane));
         writer.flush();
         hello = reader.readHello();
         long helloArrivedEpochNs = context.kernel().clock().epochNanos();

@@ -44,6 +44,16 @@ record NetworkContext(String nodeId, long incarnation, Kernel kernel, NetworkCon
         return laneCount == 1 || criticality.compareTo(io.etherware.core.message.Criticality.MIDDLE) >= 0 ? 0 : 1;
     }
 
+    /**
+     * The largest frame this node takes from a peer, said in its HELLO: {@code maxFrameBytes}, or
+     * less when the codec's document limit is lower, so that a peer never sends a message this
+     * node's codec would refuse (and close the connection over): it refuses it itself, to its
+     * sender, and the connection carries on.
+     */
+    int acceptedFrameBytes() {
+        return (int) Math.min(config.maxFrameBytes(), (long) codec.maxDocumentBytes() + Frame.DATA_OVERHEAD_BYTES);
+    }
+
     /** Closes a connection off the calling thread (a sender must not wait for the close). */
     void closeLater(Connection connection, CloseReason reason, String detail) {
         try {
