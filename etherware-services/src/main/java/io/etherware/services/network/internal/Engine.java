@@ -39,7 +39,8 @@ import org.slf4j.LoggerFactory;
  * every {@value #TICK_MS} ms for redialing, delayed acknowledgements, time probes and expiry.
  *
  * <p>Threads (all platform threads): one acceptor, one control, and per connection a reader and
- * a writer. Senders never block: they queue at a {@link Peer}.
+ * a writer. Senders never block: on an idle connection a sender writes its frame itself, otherwise
+ * it queues at a {@link Peer} (see {@link Link}).
  *
  * <p>Thread-safety: all methods may be called from any thread.
  */

@@ -4,7 +4,7 @@ import io.etherware.core.message.Profile;
 import java.util.List;
 
 /**
- * The frames of the node-to-node protocol, version 2 ({@code NETWORK-PROTOCOL.md}): each is
+ * The frames of the node-to-node protocol, version {@value #VERSION} ({@code NETWORK-PROTOCOL.md}): each is
  * a 4-byte big-endian length, a type byte and a body.
  *
  * <p>Immutable values.
