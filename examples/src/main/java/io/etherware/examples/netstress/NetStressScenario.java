@@ -11,6 +11,7 @@ import io.etherware.examples.migrate.WarmUp;
 import io.etherware.examples.scenario.CpuLoad;
 import io.etherware.examples.scenario.CycleLog;
 import io.etherware.examples.scenario.GcActivity;
+import io.etherware.examples.scenario.MissedCycles;
 import io.etherware.examples.scenario.NodeProcess;
 import io.etherware.examples.scenario.PendulumRig;
 import io.etherware.examples.scenario.PlantProbe;
@@ -292,6 +293,8 @@ public final class NetStressScenario {
         List<String> notes = new ArrayList<>();
         notes.add(String.format(Locale.ROOT, "%s: on both nodes %s; %s; node 2 in a second JVM (pid %d), TCP on"
                 + " loopback", variant.title(), variant.description(), networkDescription(variant), node2Pid));
+        MissedCycles.note(cycles.cycles(), settings.periodNs(), run.originNs(), run.firstReleaseNs(), run.endNs())
+                .ifPresent(notes::add);
         notes.add(String.format(Locale.ROOT, "  node 1: controller Ticks sent %d, skipped %d late, %d busy and %d"
                 + " undeliverable, sending lateness p99 %.3f ms; stress Ticks sent %d, activations %d; cycles"
                 + " recorded %d (dropped %d)", run.controlTicks().ticksSent(), run.controlTicks().skippedLate(),

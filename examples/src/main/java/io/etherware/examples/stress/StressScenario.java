@@ -7,6 +7,7 @@ import io.etherware.core.time.NodeClock;
 import io.etherware.examples.scenario.CpuLoad;
 import io.etherware.examples.scenario.CycleLog;
 import io.etherware.examples.scenario.GcActivity;
+import io.etherware.examples.scenario.MissedCycles;
 import io.etherware.examples.scenario.PendulumRig;
 import io.etherware.examples.scenario.PlantProbe;
 import io.etherware.examples.scenario.PlantWiring;
@@ -190,6 +191,7 @@ public final class StressScenario {
             List<ScenarioEvent> marks = events.snapshot();
             List<String> notes = new ArrayList<>();
             notes.add(String.format(Locale.ROOT, "%s: %s", variant.title(), variant.description()));
+            MissedCycles.note(cycles.cycles(), periodNs, originNs, firstReleaseNs, endNs).ifPresent(notes::add);
             notes.add(String.format(Locale.ROOT, "  controller Ticks: sent %d, skipped %d late and %d busy, sending"
                     + " lateness p99 %.3f ms; stress Ticks sent %d, activations %d; cycles recorded %d (dropped %d)",
                     controlTicks.ticksSent(), controlTicks.skippedLate(), controlTicks.skippedBusy(),
