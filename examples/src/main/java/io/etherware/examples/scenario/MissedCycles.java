@@ -62,8 +62,29 @@ public final class MissedCycles {
         if (withoutCycle > 0) {
             text.append("; ").append(withoutCycle).append(withoutCycle == 1 ? " release" : " releases")
                     .append(" without a control cycle");
+            List<String> at = releasesWithoutCycle(due, periodNs, firstReleaseNs, releases).stream().limit(LISTED)
+                    .map(releaseNs -> String.format(Locale.ROOT, "%.2f", (releaseNs - originNs) / 1e9)).toList();
+            if (!at.isEmpty()) {
+                text.append(", at ").append(String.join(", ", at)).append(withoutCycle > LISTED ? ", ..." : "");
+            }
         }
         return Optional.of(text.toString());
+    }
+
+    /** The due releases no cycle was recorded for, by release time (cycles are matched to the nearest release). */
+    private static List<Long> releasesWithoutCycle(List<ControlCycle> due, long periodNs, long firstReleaseNs,
+            long releases) {
+        Set<Long> recorded = new HashSet<>();
+        for (ControlCycle cycle : due) {
+            recorded.add(Math.floorDiv(cycle.releaseNs() - firstReleaseNs + periodNs / 2, periodNs));
+        }
+        List<Long> missing = new ArrayList<>();
+        for (long k = 0; k < releases && missing.size() < LISTED; k++) {
+            if (!recorded.contains(k)) {
+                missing.add(firstReleaseNs + k * periodNs);
+            }
+        }
+        return missing;
     }
 
     private static String entry(ControlCycle cycle, long originNs) {

@@ -30,7 +30,7 @@ class MissedCyclesTest {
 
         assertEquals(Optional.of("  deadline misses at (s since the board started): 0.06 (no reading, given up 10.0 ms"
                 + " after its release, started 0.0 ms late), 0.09 (torque 15.5 ms after its release, started 2.0 ms"
-                + " late); 1 release without a control cycle"), note);
+                + " late); 1 release without a control cycle, at 0.12"), note);
         ScenarioRun run = Runs.run("a", Runs.samples(0.0), cycles, List.of(), 11 * P);
         assertEquals(3, RunSummary.of(run).deadlineMisses(), "the same misses as the summary counts");
     }
