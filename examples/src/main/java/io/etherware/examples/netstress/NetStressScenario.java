@@ -3,7 +3,9 @@ package io.etherware.examples.netstress;
 import io.etherware.core.codec.MessageCodec;
 import io.etherware.core.kernel.DeliveryWarmUp;
 import io.etherware.core.message.Criticality;
+import io.etherware.core.message.Message;
 import io.etherware.core.message.Profile;
+import io.etherware.core.message.QoS;
 import io.etherware.core.scheduler.Scheduler;
 import io.etherware.core.time.NodeClock;
 import io.etherware.examples.migrate.CycleReport;
@@ -28,7 +30,10 @@ import io.etherware.examples.stress.StressComponent;
 import io.etherware.examples.stress.StressConfig;
 import io.etherware.examples.stress.StressScenario;
 import io.etherware.examples.stress.StressScenario.Variant;
+import io.etherware.pendulum.components.DspProxy;
+import io.etherware.pendulum.components.DspProxyStatus;
 import io.etherware.pendulum.components.PendulumController;
+import io.etherware.pendulum.components.StatusRequest;
 import io.etherware.pendulum.plant.PendulumState;
 import io.etherware.rt.platform.ThreadGrant;
 import io.etherware.rt.platform.CpuPartition;
@@ -98,6 +103,8 @@ public final class NetStressScenario {
     private static final long THREAD_START_TIMEOUT_NS = 2_000_000_000L;
     private static final long NODE_START_TIMEOUT_S = 60;
     private static final Duration RESOLVE_TIMEOUT = Duration.ofSeconds(30);
+    /** How long the DSPProxy has to answer the status request at the end of a run. */
+    private static final Duration STATUS_TIMEOUT = Duration.ofSeconds(2);
     private static final int SLACK = 1_000;
 
     private final StressConfig config;
@@ -280,6 +287,25 @@ public final class NetStressScenario {
         }
     }
 
+    /**
+     * Node 1's DSPProxy and its serial client, counted since the rig started: a reading the
+     * controller gave up on may have waited for a resent serial request (the client's timeout).
+     */
+    private static String dspProxyNote(PendulumRig rig) {
+        try {
+            Message reply = rig.node().requestBlocking(DspProxy.DEFAULT_PROFILE, new StatusRequest(false),
+                    QoS.of(Criticality.MIDDLE), STATUS_TIMEOUT.toNanos());
+            DspProxyStatus status = reply.contentsAs(DspProxyStatus.class);
+            return String.format(Locale.ROOT, "  node 1: DSPProxy readings %d, commands %d, exchanges failed for"
+                    + " want of a reply %d; its serial client: requests %d, attempts that timed out %d, stale"
+                    + " replies %d, frames rejected %d", status.proxy().angleReads(), status.proxy().torqueCommands(),
+                    status.proxy().timeouts(), status.link().requests(), status.link().timeouts(),
+                    status.link().staleReplies(), status.link().framesRejected());
+        } catch (RuntimeException e) {
+            return "  node 1: DSPProxy counters not read: " + e.getMessage();
+        }
+    }
+
     private static NetStressRun record(Variant variant, StressConfig settings, PendulumRig rig, Notifier notifier,
             RealtimeScheduler realtime, SimThreads threads, ScenarioEvents events, CycleLog cycles, Balanced run,
             Results node2, long node2Pid, GcActivity gc, NetworkMessenger net) {
@@ -295,6 +321,7 @@ public final class NetStressScenario {
                 + " loopback", variant.title(), variant.description(), networkDescription(variant), node2Pid));
         MissedCycles.note(cycles.cycles(), settings.periodNs(), run.originNs(), run.firstReleaseNs(), run.endNs())
                 .ifPresent(notes::add);
+        notes.add(dspProxyNote(rig));
         notes.add(String.format(Locale.ROOT, "  node 1: controller Ticks sent %d, skipped %d late, %d busy and %d"
                 + " undeliverable, sending lateness p99 %.3f ms; stress Ticks sent %d, activations %d; cycles"
                 + " recorded %d (dropped %d)", run.controlTicks().ticksSent(), run.controlTicks().skippedLate(),
