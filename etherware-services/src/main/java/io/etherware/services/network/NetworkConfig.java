@@ -116,11 +116,7 @@ public record NetworkConfig(InetSocketAddress listenAddress, List<InetSocketAddr
         peers = List.copyOf(Objects.requireNonNull(peers, "peers=null"));
         Objects.requireNonNull(connectionFactory, "connectionFactory=null: use ConnectionFactory.plain()");
         NetworkConfigChecks.frames(maxFrameBytes, queueCapacity, windowMessages);
-        if (codec != null && codec.maxDocumentBytes() < MIN_CODEC_DOCUMENT_BYTES) {
-            throw new IllegalArgumentException("codec.maxDocumentBytes()=" + codec.maxDocumentBytes() + " must be at"
-                    + " least " + MIN_CODEC_DOCUMENT_BYTES + ": a node tells its peers the largest message it takes,"
-                    + " and peers refuse a node that takes less");
-        }
+        NetworkConfigChecks.codec(codec);
         NetworkConfigChecks.heartbeats(heartbeatIntervalNs, heartbeatTimeoutNs);
         NetworkConfigChecks.dialing(handshakeTimeoutNs, connectTimeoutNs, reconnectInitialBackoffNs,
                 reconnectMaxBackoffNs, reconnectJitter, peerDownGraceNs);

@@ -1,5 +1,6 @@
 package io.etherware.services.network;
 
+import io.etherware.core.codec.MessageCodec;
 import io.etherware.rt.platform.ThreadPolicy;
 import io.etherware.rt.scheduling.ThreadSchedulingRule;
 import java.net.InetSocketAddress;
@@ -21,6 +22,15 @@ final class NetworkConfigChecks {
         requireRange("maxFrameBytes", maxFrameBytes, NetworkConfig.MIN_FRAME_BYTES, 256 << 20);
         requireRange("queueCapacity", queueCapacity, 1, 10_000_000);
         requireRange("windowMessages", windowMessages, 4, 1 << 20);
+    }
+
+    /** A codec given, whose document limit becomes the frame limit a node says in its HELLO. */
+    static void codec(MessageCodec codec) {
+        if (codec != null && codec.maxDocumentBytes() < NetworkConfig.MIN_CODEC_DOCUMENT_BYTES) {
+            throw new IllegalArgumentException("codec.maxDocumentBytes()=" + codec.maxDocumentBytes() + " must be at"
+                    + " least " + NetworkConfig.MIN_CODEC_DOCUMENT_BYTES + ": a node tells its peers the largest"
+                    + " message it takes, and peers refuse a node that takes less");
+        }
     }
 
     /** The heartbeat, whose timeout must leave room for two intervals. */
